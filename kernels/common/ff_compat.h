@@ -1,0 +1,70 @@
+// ff_compat.h - the tiny vocabulary that lets one header compile both as C++
+// (the OpenMP backend, tests) and as OpenCL C 1.2 (the kernels).
+//
+// Rules for code in kernels/common/:
+//   * only `float`, `int`, `uint` and the ff_float3 / ff_quat helpers below;
+//   * every function is FF_FN (inline, no state);
+//   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX so both sides call
+//     the single-precision functions.
+#ifndef FF_COMPAT_H
+#define FF_COMPAT_H
+
+#ifdef __OPENCL_VERSION__
+#define FF_FN inline
+typedef float3 ff_float3;
+typedef float4 ff_quat; /* (x, y, z, w) */
+#define FF_F3(a, b, c) ((float3)((a), (b), (c)))
+#define FF_Q(x, y, z, w) ((float4)((x), (y), (z), (w)))
+#define FF_SQRT(a) sqrt(a)
+#define FF_SIN(a) sin(a)
+#define FF_COS(a) cos(a)
+#define FF_FABS(a) fabs(a)
+#define FF_FMIN(a, b) fmin((a), (b))
+#define FF_FMAX(a, b) fmax((a), (b))
+#define FF_DOT(a, b) dot((a), (b))
+#define FF_CROSS(a, b) cross((a), (b))
+#else
+#include <cmath>
+#include <cstdint>
+typedef unsigned int uint;
+struct ff_float3 {
+  float x, y, z;
+};
+struct ff_quat {
+  float x, y, z, w;
+};
+inline ff_float3 operator+(ff_float3 a, ff_float3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline ff_float3 operator-(ff_float3 a, ff_float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline ff_float3 operator-(ff_float3 a) { return {-a.x, -a.y, -a.z}; }
+inline ff_float3 operator*(ff_float3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+inline ff_float3 operator*(float s, ff_float3 a) { return {a.x * s, a.y * s, a.z * s}; }
+inline ff_float3 operator/(ff_float3 a, float s) { return {a.x / s, a.y / s, a.z / s}; }
+inline ff_float3& operator+=(ff_float3& a, ff_float3 b) {
+  a = a + b;
+  return a;
+}
+inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
+  a = a - b;
+  return a;
+}
+#define FF_FN inline
+#define FF_F3(a, b, c) (ff_float3{(a), (b), (c)})
+#define FF_Q(x, y, z, w) (ff_quat{(x), (y), (z), (w)})
+#define FF_SQRT(a) std::sqrt((float)(a))
+#define FF_SIN(a) std::sin((float)(a))
+#define FF_COS(a) std::cos((float)(a))
+#define FF_FABS(a) std::fabs((float)(a))
+#define FF_FMIN(a, b) std::fmin((float)(a), (float)(b))
+#define FF_FMAX(a, b) std::fmax((float)(a), (float)(b))
+#define FF_DOT(a, b) ((a).x * (b).x + (a).y * (b).y + (a).z * (b).z)
+#define FF_CROSS(a, b)                                                                   \
+  FF_F3((a).y * (b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z,                    \
+        (a).x * (b).y - (a).y * (b).x)
+#endif
+
+#define FF_PI 3.14159265358979323846f
+
+FF_FN float ff_length(ff_float3 a) { return FF_SQRT(FF_DOT(a, a)); }
+FF_FN float ff_clampf(float v, float lo, float hi) { return FF_FMIN(FF_FMAX(v, lo), hi); }
+
+#endif /* FF_COMPAT_H */

@@ -1,0 +1,37 @@
+// ff_control.h - control-particle and shape-matching formulas of Yoshino &
+// Tsuruno (eq. 4-9), shared by the OpenMP backend and the OpenCL kernels.
+#ifndef FF_CONTROL_H
+#define FF_CONTROL_H
+#include "ff_compat.h"
+
+/* Eq. 5: density scale of a control particle from rho_hat = sum_e V_e W. */
+FF_FN float ff_control_scale(float rho_hat) { return 1.0f - FF_FMIN(1.0f, rho_hat); }
+
+/* Eq. 4, one control particle's term: w_a s_i (p_i - x_e)/|p_i - x_e| W.
+ * d = p_i - x_e, r = |d|. */
+FF_FN ff_float3 ff_attraction_term(ff_float3 d, float r, float s, float w) {
+  return r > 1e-12f ? d * (s * w / r) : FF_F3(0.0f, 0.0f, 0.0f);
+}
+
+/* Eq. 6 integrated implicitly. Eq. 6 is a linear relaxation of v_e towards the
+ * control velocities: f_v = w_v (sum_i W_i v_i - (sum_i W_i) v_e) = V - K v_e with
+ * V = w_v sum_i W_i v_i and K = w_v sum_i W_i. Backward Euler over dt gives the
+ * acceleration (V - K v_e) / (1 + dt K): identical to eq. 6 as dt K -> 0 and never
+ * overshooting, whatever the number of control particles in range. */
+FF_FN float ff_velocity_force_implicit(float vsum, float k, float v, float dt) {
+  return (vsum - k * v) / (1.0f + dt * k);
+}
+
+/* Fluid feedback: the control particle's velocity relaxes towards u_bar, the
+ * kernel-weighted mean fluid velocity around it (zero where no fluid is). */
+FF_FN ff_float3 ff_feedback_velocity(ff_float3 v, ff_float3 u_bar, float coef) {
+  return v + (u_bar - v) * coef;
+}
+
+/* Eq. 7: velocity change towards the goal, with stiffness alpha and the shape
+ * matching time step dt. */
+FF_FN ff_float3 ff_shape_match_dv(ff_float3 goal, ff_float3 x, float alpha, float dt) {
+  return (goal - x) * (alpha / dt);
+}
+
+#endif /* FF_CONTROL_H */

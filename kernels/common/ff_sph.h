@@ -1,0 +1,73 @@
+// ff_sph.h - SPH formulas of Mueller, Charypar & Gross 2003, plus the analytic
+// planar-wall boundary. Shared by the OpenMP backend and the OpenCL kernels.
+#ifndef FF_SPH_H
+#define FF_SPH_H
+#include "ff_compat.h"
+
+/* Kernel constants for support radius h (precomputed once per run). */
+FF_FN float ff_poly6_coef(float h) { return 315.0f / (64.0f * FF_PI * h * h * h * h * h * h * h * h * h); }
+FF_FN float ff_spiky_grad_coef(float h) { return 45.0f / (FF_PI * h * h * h * h * h * h); }
+FF_FN float ff_visc_lap_coef(float h) { return 45.0f / (FF_PI * h * h * h * h * h * h); }
+
+/* W_poly6 from the squared distance r2 (0 outside the support). */
+FF_FN float ff_poly6(float r2, float h2, float coef) {
+  float d = h2 - r2;
+  return r2 < h2 ? coef * d * d * d : 0.0f;
+}
+
+/* Magnitude factor g of the spiky gradient: grad W(r_ij) = -g * r_ij
+ * where r_ij = x_i - x_j and g = coef * (h - r)^2 / r. Zero for r = 0 or r >= h. */
+FF_FN float ff_spiky_grad_factor(float r, float h, float coef) {
+  float d = h - r;
+  return (r > 1e-12f && r < h) ? coef * d * d / r : 0.0f;
+}
+
+/* Laplacian of the viscosity kernel. */
+FF_FN float ff_visc_lap(float r, float h, float coef) { return r < h ? coef * (h - r) : 0.0f; }
+
+/* Equation of state p = k (rho - rho0). */
+FF_FN float ff_pressure(float rho, float rho0, float k) { return k * (rho - rho0); }
+
+/* ---------------------------------------------------------------------------
+ * Planar wall boundary.
+ *
+ * Akinci et al. 2012 sample the wall with boundary particles b of volume-weighted
+ * mass Psi_b = rho0 V_b and add rho0 * sum_b V_b W(x - x_b) to the density. For a
+ * flat wall sampled finely this sum converges to rho0 times the part of the
+ * kernel that lies beyond the wall. For an axis-aligned box the integral has a
+ * closed form, so we evaluate it exactly instead of storing wall particles.
+ * d is the distance from the particle to the wall plane (d >= h: no effect).
+ * ------------------------------------------------------------------------- */
+
+/* Fraction of the poly6 kernel's mass that lies beyond a plane at distance d:
+ * F(d) = (pi K / 4) * int_d^h (h^2 - z^2)^4 dz, with F(0) = 1/2. */
+FF_FN float ff_poly6_wall_fraction(float d, float h, float coef) {
+  d = ff_clampf(d, 0.0f, h);
+  float h2 = h * h, h4 = h2 * h2, h6 = h4 * h2, h8 = h4 * h4;
+  float d2 = d * d, d3 = d2 * d, d5 = d3 * d2, d7 = d5 * d2, d9 = d7 * d2;
+  float ph = h8 * h * (128.0f / 315.0f);
+  float pd = h8 * d - (4.0f / 3.0f) * h6 * d3 + (6.0f / 5.0f) * h4 * d5 - (4.0f / 7.0f) * h2 * d7 +
+             d9 / 9.0f;
+  return 0.25f * FF_PI * coef * (ph - pd);
+}
+
+/* Integral of the spiky kernel over the slice at distance d from the particle,
+ * S(d) = 2 pi K_spiky int_d^h (h - r)^3 r dr with K_spiky = 15/(pi h^6).
+ * The half-space integral of grad_x W_spiky is -S(d) n, with n the wall's
+ * inward normal. */
+FF_FN float ff_spiky_wall_slice(float d, float h) {
+  d = ff_clampf(d, 0.0f, h);
+  float u = h - d, u2 = u * u, u4 = u2 * u2;
+  float h6 = h * h * h * h * h * h;
+  return (30.0f / h6) * (h * u4 * 0.25f - u4 * u * 0.2f);
+}
+
+/* Acceleration that the mirrored wall pressure exerts along the inward normal.
+ * From f_i = -sum_j m_j (p_i + p_j)/(2 rho_j) grad W with the wall carrying
+ * p_j = p_i and m_j / rho_j = dV: f_i = p_i S(d) n, a_i = f_i / rho_i.
+ * Negative pressure is not mirrored (a wall never pulls fluid onto itself). */
+FF_FN float ff_wall_pressure_accel(float d, float h, float p, float rho) {
+  return FF_FMAX(p, 0.0f) * ff_spiky_wall_slice(d, h) / rho;
+}
+
+#endif /* FF_SPH_H */

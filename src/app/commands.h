@@ -1,0 +1,11 @@
+// commands.h - the subcommands of the flowform program.
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace ff::app {
+
+// Each adds its subcommand to `app`; the returned function runs it and gives
+// the process exit code.
+std::function<int()> addRunCommand(CLI::App& app);
+
+}  // namespace ff::app

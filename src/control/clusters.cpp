@@ -1,0 +1,96 @@
+#include "control/clusters.h"
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <unordered_map>
+
+namespace ff {
+
+namespace {
+int64_t key(int a, int b, int c) {
+  return (int64_t(a) + (1 << 20)) | ((int64_t(b) + (1 << 20)) << 21) | ((int64_t(c) + (1 << 20)) << 42);
+}
+int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+}  // namespace
+
+void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
+                   const std::vector<int>& vk, int stride, int half_width) {
+  const size_t n = set.size();
+  // Candidate centres: lattice points (multiples of stride) within half_width of any particle.
+  std::unordered_map<int64_t, std::vector<uint32_t>> groups;
+  std::vector<int64_t> centre_keys;
+  std::vector<int> cxs, cys, czs;
+  for (size_t p = 0; p < n; ++p) {
+    int lo[3] = {floorDiv(vi[p] - half_width + stride - 1, stride), floorDiv(vj[p] - half_width + stride - 1, stride),
+                 floorDiv(vk[p] - half_width + stride - 1, stride)};
+    int hi[3] = {floorDiv(vi[p] + half_width, stride), floorDiv(vj[p] + half_width, stride),
+                 floorDiv(vk[p] + half_width, stride)};
+    for (int c = lo[2]; c <= hi[2]; ++c)
+      for (int b = lo[1]; b <= hi[1]; ++b)
+        for (int a = lo[0]; a <= hi[0]; ++a) {
+          int64_t k = key(a, b, c);
+          auto it = groups.find(k);
+          if (it == groups.end()) {
+            it = groups.emplace(k, std::vector<uint32_t>()).first;
+            centre_keys.push_back(k);
+            cxs.push_back(a * stride), cys.push_back(b * stride), czs.push_back(c * stride);
+          }
+          it->second.push_back(uint32_t(p));
+        }
+  }
+  // Keep clusters with at least 4 members, in deterministic (creation) order.
+  std::vector<std::vector<uint32_t>> kept;
+  std::vector<int> kx, ky, kz;
+  std::vector<int> covered(n, 0);
+  for (size_t c = 0; c < centre_keys.size(); ++c) {
+    auto& m = groups[centre_keys[c]];
+    if (m.size() < 4) continue;
+    for (uint32_t p : m) covered[p] = 1;
+    kept.push_back(std::move(m));
+    kx.push_back(cxs[c]), ky.push_back(cys[c]), kz.push_back(czs[c]);
+  }
+  // A particle in no cluster joins the nearest kept cluster (or, with no
+  // cluster at all, every particle forms one cluster together).
+  if (kept.empty() && n > 0) {
+    kept.emplace_back();
+    for (size_t p = 0; p < n; ++p) kept.back().push_back(uint32_t(p));
+    kx.push_back(0), ky.push_back(0), kz.push_back(0);
+  } else {
+    for (size_t p = 0; p < n; ++p) {
+      if (covered[p]) continue;
+      size_t best = 0;
+      long bestd = LONG_MAX;
+      for (size_t c = 0; c < kept.size(); ++c) {
+        long dx = kx[c] - vi[p], dy = ky[c] - vj[p], dz = kz[c] - vk[p];
+        long d = dx * dx + dy * dy + dz * dz;
+        if (d < bestd) bestd = d, best = c;
+      }
+      kept[best].push_back(uint32_t(p));
+    }
+  }
+
+  Clusters& cl = set.clusters;
+  cl = Clusters();
+  cl.start.push_back(0);
+  for (auto& m : kept) {
+    std::sort(m.begin(), m.end());
+    double sx = 0, sy = 0, sz = 0;
+    for (uint32_t p : m) sx += set.x0[p], sy += set.y0[p], sz += set.z0[p];
+    cl.rest_cx.push_back(float(sx / double(m.size())));
+    cl.rest_cy.push_back(float(sy / double(m.size())));
+    cl.rest_cz.push_back(float(sz / double(m.size())));
+    cl.members.insert(cl.members.end(), m.begin(), m.end());
+    cl.start.push_back(uint32_t(cl.members.size()));
+  }
+  // particle -> clusters
+  cl.of_start.assign(n + 1, 0);
+  for (uint32_t p : cl.members) ++cl.of_start[p + 1];
+  for (size_t p = 0; p < n; ++p) cl.of_start[p + 1] += cl.of_start[p];
+  cl.of.resize(cl.members.size());
+  std::vector<uint32_t> fill(cl.of_start.begin(), cl.of_start.end() - 1);
+  for (size_t c = 0; c + 1 < cl.start.size(); ++c)
+    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) cl.of[fill[cl.members[k]]++] = uint32_t(c);
+}
+
+}  // namespace ff

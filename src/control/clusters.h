@@ -1,0 +1,19 @@
+// clusters.h - overlapping shape-matching clusters over the reference voxels.
+#pragma once
+#include <vector>
+
+#include "control/control_set.h"
+
+namespace ff {
+
+// Builds clusters for control particles whose rest positions sit on a voxel
+// lattice of spacing `voxel` (coordinates vi, vj, vk per particle). A cluster is
+// centred on every lattice point whose coordinates are multiples of `stride`
+// and holds the particles within `half_width` voxels of it (a cube). Clusters
+// with fewer than 4 particles are dropped; a particle left in no cluster joins
+// the cluster whose centre is nearest. Fills set.clusters (members in
+// ascending particle order, rest centres, particle -> cluster lists).
+void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
+                   const std::vector<int>& vk, int stride, int half_width);
+
+}  // namespace ff

@@ -1,0 +1,40 @@
+// control_set.h - control particles (Thuerey et al. 2006) with their rest
+// shape and shape-matching clusters, structure of arrays.
+//
+// Control particles keep a fixed order (the reference voxel order, which is
+// already sorted by the rest shape's grid cell); neighbour queries go through
+// an index grid rebuilt each step, so cluster membership never needs remapping.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace ff {
+
+// Overlapping clusters in compressed-row form.
+struct Clusters {
+  std::vector<uint32_t> start;    // cluster c holds members[start[c] .. start[c+1])
+  std::vector<uint32_t> members;  // control-particle indices
+  std::vector<float> rest_cx, rest_cy, rest_cz;  // rest centre of mass of each cluster
+  // particle -> clusters, compressed-row: particle i is in of[of_start[i] .. of_start[i+1])
+  std::vector<uint32_t> of_start;
+  std::vector<uint32_t> of;
+  size_t count() const { return start.empty() ? 0 : start.size() - 1; }
+};
+
+struct ControlSet {
+  std::vector<float> x, y, z;     // current positions
+  std::vector<float> vx, vy, vz;  // current velocities
+  std::vector<float> x0, y0, z0;  // rest positions (reference particles, target frame)
+  Clusters clusters;
+  float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
+  size_t size() const { return x.size(); }
+};
+
+// Per-step values the controller computes for each control particle.
+struct ControlFields {
+  std::vector<float> s;           // eq. 5 density scale
+  std::vector<float> ux, uy, uz;  // kernel-weighted fluid velocity around the particle
+};
+
+}  // namespace ff

@@ -1,0 +1,43 @@
+#include "control/placement.h"
+
+#include <cmath>
+
+#include "control/clusters.h"
+#include "core/error.h"
+
+namespace ff {
+
+ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
+                                 const ShapeMatchParams& sm) {
+  const size_t n = target.reference.size();
+  if (n == 0) throw Error("target '" + target.label + "' has no reference particles");
+  Vec3 tlo = target.reference[0], thi = target.reference[0];
+  for (const Vec3& r : target.reference) tlo = tlo.cwiseMin(r), thi = thi.cwiseMax(r);
+  Vec3 text = thi - tlo, rext = hi - lo;
+
+  ControlSet set;
+  for (auto* a : {&set.x, &set.y, &set.z, &set.vx, &set.vy, &set.vz, &set.x0, &set.y0, &set.z0}) a->resize(n);
+  std::vector<int> vi(n), vj(n), vk(n);
+  const VoxelGrid& g = target.grid;
+  double sx = 0, sy = 0, sz = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const Vec3& r = target.reference[p];
+    Vec3 pos;
+    for (int d = 0; d < 3; ++d) {
+      float u = text[d] > 0 ? (r[d] - tlo[d]) / text[d] : 0.5f;
+      pos[d] = lo[d] + u * rext[d];
+    }
+    set.x[p] = pos.x(), set.y[p] = pos.y(), set.z[p] = pos.z();
+    set.vx[p] = set.vy[p] = set.vz[p] = 0.0f;
+    set.x0[p] = r.x(), set.y0[p] = r.y(), set.z0[p] = r.z();
+    sx += r.x(), sy += r.y(), sz += r.z();
+    vi[p] = int(std::floor((r.x() - g.origin.x()) / g.voxel));
+    vj[p] = int(std::floor((r.y() - g.origin.y()) / g.voxel));
+    vk[p] = int(std::floor((r.z() - g.origin.z()) / g.voxel));
+  }
+  set.rest_cx = float(sx / double(n)), set.rest_cy = float(sy / double(n)), set.rest_cz = float(sz / double(n));
+  buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width);
+  return set;
+}
+
+}  // namespace ff

@@ -1,0 +1,70 @@
+#include "control/shape_matching.h"
+
+namespace ff {
+
+void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx, std::vector<float>& cy,
+                   std::vector<float>& cz, int iterations) {
+  const Clusters& cl = set.clusters;
+  const long nc = long(cl.count());
+  q.resize(size_t(nc), FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
+  cx.resize(size_t(nc)), cy.resize(size_t(nc)), cz.resize(size_t(nc));
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long c = 0; c < nc; ++c) {
+    const uint32_t b = cl.start[c], e = cl.start[c + 1];
+    float mx = 0, my = 0, mz = 0;
+    for (uint32_t k = b; k < e; ++k) {
+      uint32_t p = cl.members[k];
+      mx += set.x[p], my += set.y[p], mz += set.z[p];
+    }
+    const float inv = 1.0f / float(e - b);
+    ff_float3 com = FF_F3(mx * inv, my * inv, mz * inv);
+    ff_float3 rc = FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c]);
+    ff_mat3 apq = ff_mat3_zero();
+    for (uint32_t k = b; k < e; ++k) {
+      uint32_t p = cl.members[k];
+      ff_float3 pp = FF_F3(set.x[p], set.y[p], set.z[p]) - com;
+      ff_float3 qq = FF_F3(set.x0[p], set.y0[p], set.z0[p]) - rc;
+      apq = ff_mat3_add_outer(apq, pp, qq);
+    }
+    q[c] = ff_extract_rotation(apq, q[c], iterations);
+    cx[c] = com.x, cy[c] = com.y, cz[c] = com.z;
+  }
+}
+
+void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const std::vector<float>& cx,
+                  const std::vector<float>& cy, const std::vector<float>& cz, std::vector<float>& gx,
+                  std::vector<float>& gy, std::vector<float>& gz) {
+  const Clusters& cl = set.clusters;
+  const long n = long(set.size());
+  gx.resize(size_t(n)), gy.resize(size_t(n)), gz.resize(size_t(n));
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; ++p) {
+    ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
+    const uint32_t b = cl.of_start[p], e = cl.of_start[p + 1];
+    ff_float3 x0 = FF_F3(set.x0[p], set.y0[p], set.z0[p]);
+    for (uint32_t k = b; k < e; ++k) {
+      uint32_t c = cl.of[k];
+      ff_mat3 r = ff_quat_to_mat3(q[c]);
+      g += ff_mat3_mul_vec(r, x0 - FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c])) + FF_F3(cx[c], cy[c], cz[c]);
+    }
+    const float inv = e > b ? 1.0f / float(e - b) : 0.0f;
+    gx[p] = g.x * inv, gy[p] = g.y * inv, gz[p] = g.z * inv;
+  }
+}
+
+void bestFitFrame(const ControlSet& set, ff_quat& q, float c[3], int iterations) {
+  const size_t n = set.size();
+  double mx = 0, my = 0, mz = 0;
+  for (size_t p = 0; p < n; ++p) mx += set.x[p], my += set.y[p], mz += set.z[p];
+  if (n) mx /= double(n), my /= double(n), mz /= double(n);
+  ff_float3 com = FF_F3(float(mx), float(my), float(mz));
+  ff_float3 rc = FF_F3(set.rest_cx, set.rest_cy, set.rest_cz);
+  ff_mat3 apq = ff_mat3_zero();
+  for (size_t p = 0; p < n; ++p)
+    apq = ff_mat3_add_outer(apq, FF_F3(set.x[p], set.y[p], set.z[p]) - com,
+                            FF_F3(set.x0[p], set.y0[p], set.z0[p]) - rc);
+  q = ff_extract_rotation(apq, q, iterations);
+  c[0] = com.x, c[1] = com.y, c[2] = com.z;
+}
+
+}  // namespace ff

@@ -1,0 +1,18 @@
+// metrics.h - how well the fluid matches the target, and how it behaves.
+// Definitions: docs/METRICS.md.
+#pragma once
+
+namespace ff {
+
+struct StepMetrics {
+  long step = 0;
+  double time = 0.0;
+  double iou = 0.0;             // target voxels (at the control particles' best rigid fit) vs fluid voxels
+  double coverage = 0.0;        // mean of 1 - s_i over the control particles
+  double max_speed = 0.0;       // m/s
+  double density_error = 0.0;   // mean |rho - rho0| / rho0
+  double kinetic_energy = 0.0;  // J
+  long control_count = 0;
+};
+
+}  // namespace ff

@@ -1,0 +1,66 @@
+// params.h - every physical and numerical parameter of a run. Defaults are the
+// paper's appendix values (the `paper` preset).
+#pragma once
+#include <string>
+
+namespace ff {
+
+// How eq. 4 and eq. 6 turn into the fluid's motion. The paper leaves the units
+// of f_a and f_v open; docs/CONTROL_UNITS.md records the measurement that chose
+// the default.
+enum class ControlForceUnits {
+  Acceleration,  // dv/dt = f_a + f_v
+  ForceDensity,  // dv/dt = (f_a + f_v) / rho_e, like the SPH pressure force
+  Force,         // dv/dt = (f_a + f_v) / m_e, a force on the particle
+};
+
+struct FluidParams {
+  float particle_mass = 0.0002f;
+  float particle_radius = 0.0059f;  // used for rendering and export only
+  float smoothing_radius = 0.012f;  // h
+  float rest_density = 800.0f;
+  float gas_constant = 0.5f;        // k in p = k (rho - rho0)
+  float viscosity = 0.02f;          // mu
+  float time_step = 0.004f;
+  float gravity[3] = {0.0f, -9.81f, 0.0f};
+  // Safeguard that keeps the solver stable without tuning: no particle moves
+  // more than this fraction of h in one step (a CFL-style velocity limit).
+  float max_step_fraction = 0.5f;
+
+  float restVolume() const { return particle_mass / rest_density; }
+  float restSpacing() const;  // cube root of the rest volume
+};
+
+struct ControlParams {
+  float radius = 0.03f;          // influence radius of a control particle
+  float attraction = 0.00008f;   // w_a
+  float velocity = 0.00005f;     // w_v
+  float feedback = 0.02f;        // fluid feedback coefficient
+  ControlForceUnits units = ControlForceUnits::Acceleration;
+};
+
+struct ShapeMatchParams {
+  float stiffness = 0.3f;   // alpha of eq. 7
+  float time_step = 0.005f; // the shape-matching clock, independent of the fluid's
+  // Clusters: one centred on every `cluster_stride`-th reference voxel, holding
+  // the control particles within `cluster_half_width` voxels (a cube), so that
+  // neighbouring clusters overlap.
+  int cluster_stride = 2;
+  int cluster_half_width = 2;
+  int rotation_iterations = 8;  // warm-started quaternion iterations per step
+};
+
+struct Params {
+  FluidParams fluid;
+  ControlParams control;
+  ShapeMatchParams shape;
+};
+
+// Named parameter sets. Throws ff::Error for an unknown name.
+Params presetParams(const std::string& name);
+
+// Checks every field for NaN, Inf and out-of-range values. `where` prefixes the
+// message (e.g. the scene file). Throws ff::Error naming the field.
+void validateParams(const Params& p, const std::string& where);
+
+}  // namespace ff

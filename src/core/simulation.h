@@ -1,0 +1,68 @@
+// simulation.h - one run: a scene, a backend, the target schedule, the step
+// loop with its per-phase timings, and target changes at any moment.
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+
+#include "core/backend.h"
+#include "core/metrics.h"
+#include "scene/scene.h"
+#include "target/target_shape.h"
+
+namespace ff {
+
+class Simulation {
+ public:
+  Simulation(SceneDesc scene, std::unique_ptr<Backend> backend);
+
+  // One fluid time step (and the shape-matching steps that fall due in it).
+  // Throws ff::Error naming the step and the phase if a value becomes NaN/Inf.
+  void step();
+
+  // Changes the target now: new control particles from the current fluid
+  // region, nothing precomputed beyond voxelising the shape (cached).
+  void setTarget(const TargetSpec& spec);
+  // Switches control off.
+  void clearTarget();
+  // Changes the controlled region; the current target is regenerated in it.
+  void setRegion(const RegionDesc& region);
+  // Changes parameters live.
+  void setParams(const Params& params);
+
+  const SceneDesc& scene() const { return scene_; }
+  Backend& backend() { return *backend_; }
+  const StepMetrics& metrics() const { return metrics_; }
+  long stepCount() const { return step_; }
+  double time() const { return time_; }
+  const TargetShape* target() const { return target_; }
+  size_t targetCacheSize() const { return cache_.size(); }
+  long controlledCount() const { return controlled_; }
+
+  // Accumulated milliseconds per phase and the number of steps they cover.
+  const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
+
+  // The fluid of a scene, block by block, on cubic lattices.
+  static FluidState makeFluid(const SceneDesc& scene);
+
+ private:
+  void applySchedule();
+  template <class F>
+  void timed(Phase p, F&& f);
+  void check(Phase p);
+
+  SceneDesc scene_;
+  std::unique_ptr<Backend> backend_;
+  TargetCache cache_;
+  const TargetShape* target_ = nullptr;
+  TargetSpec target_spec_;
+  bool has_target_ = false;
+  size_t next_schedule_ = 0;
+  long step_ = 0;
+  long controlled_ = 0;
+  double time_ = 0.0;
+  StepMetrics metrics_;
+  std::array<double, size_t(Phase::Count)> phase_ms_{};
+};
+
+}  // namespace ff

@@ -1,0 +1,153 @@
+#include "cpu/backend_cpu.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "control/shape_matching.h"
+
+namespace ff {
+
+const char* phaseName(Phase p) {
+  static const char* names[] = {"grid",           "density",    "forces",         "control_scale",
+                                "control_forces", "integrate",  "shape_matching", "metrics"};
+  int i = int(p);
+  return i >= 0 && i < int(Phase::Count) ? names[i] : "?";
+}
+
+CpuBackend::CpuBackend(int threads) : threads_(threads), solver_(std::make_unique<WcsphSolver>()) {
+  if (threads_ > 0) omp_set_num_threads(threads_);
+}
+
+std::string CpuBackend::device() const {
+  return "OpenMP, " + std::to_string(omp_get_max_threads()) + " threads";
+}
+
+void CpuBackend::init(const Params& params, const ContainerDesc& box, const FluidState& fluid) {
+  box_ = box;
+  fluid_ = CpuFluid();
+  fluid_.s = fluid;
+  const size_t n = fluid.size();
+  fluid_.rho.assign(n, params.fluid.rest_density);
+  fluid_.p.assign(n, 0.0f);
+  for (auto* a : {&fluid_.ax, &fluid_.ay, &fluid_.az}) a->assign(n, 0.0f);
+  setParams(params);
+  float lo[3] = {box.min.x(), box.min.y(), box.min.z()}, hi[3] = {box.max.x(), box.max.y(), box.max.z()};
+  controller_.setBounds(lo, hi);
+}
+
+void CpuBackend::setParams(const Params& params) {
+  params_ = params;
+  controller_.setParams(params.control, params.shape);
+}
+
+void CpuBackend::setControl(ControlSet set) {
+  frame_ = RigidFrame();
+  frame_.rest_c[0] = set.rest_cx, frame_.rest_c[1] = set.rest_cy, frame_.rest_c[2] = set.rest_cz;
+  controller_.reset(std::move(set));
+}
+
+FluidView CpuBackend::view() const {
+  FluidView v;
+  const FluidState& s = fluid_.s;
+  v.n = s.size();
+  v.x = s.x.data(), v.y = s.y.data(), v.z = s.z.data();
+  v.vx = s.vx.data(), v.vy = s.vy.data(), v.vz = s.vz.data();
+  v.volume = params_.fluid.restVolume();
+  v.rho = fluid_.rho.data();
+  v.rest_density = params_.fluid.rest_density;
+  v.mass = params_.fluid.particle_mass;
+  return v;
+}
+
+void CpuBackend::buildGrid() { buildFluidGrid(fluid_, params_.fluid.smoothing_radius); }
+
+void CpuBackend::computeDensity() { solver_->computeDensity(fluid_, params_.fluid, box_); }
+
+void CpuBackend::computeForces() {
+  const size_t n = fluid_.size();
+  for (auto* a : {&fluid_.ax, &fluid_.ay, &fluid_.az}) a->assign(n, 0.0f);
+  solver_->addPressure(fluid_, params_.fluid, box_, params_.fluid.time_step);
+  addViscosityGravity(fluid_, params_.fluid);
+}
+
+void CpuBackend::computeControlScale() {
+  if (controller_.active()) controller_.computeScale(view());
+}
+
+void CpuBackend::applyControlForces(float dt) {
+  if (controller_.active())
+    controller_.addForces(view(), dt, fluid_.ax.data(), fluid_.ay.data(), fluid_.az.data());
+}
+
+void CpuBackend::integrate(float dt) { integrateFluid(fluid_, params_.fluid, box_, dt); }
+
+int CpuBackend::shapeMatching(float dt) { return controller_.advance(dt); }
+
+StepMetrics CpuBackend::computeMetrics() {
+  StepMetrics m;
+  const FluidState& s = fluid_.s;
+  const long n = long(s.size());
+  const float rho0 = params_.fluid.rest_density, mass = params_.fluid.particle_mass;
+  double derr = 0.0, ke = 0.0, vmax2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : derr, ke) reduction(max : vmax2)
+  for (long i = 0; i < n; ++i) {
+    derr += std::fabs(fluid_.rho[i] - rho0) / rho0;
+    const double v2 = double(s.vx[i]) * s.vx[i] + double(s.vy[i]) * s.vy[i] + double(s.vz[i]) * s.vz[i];
+    ke += 0.5 * mass * v2;
+    vmax2 = std::max(vmax2, v2);
+  }
+  m.density_error = n ? derr / double(n) : 0.0;
+  m.kinetic_energy = ke;
+  m.max_speed = std::sqrt(vmax2);
+  if (controller_.active()) {
+    const auto& sv = controller_.fields().s;
+    double cov = 0.0;
+    for (float si : sv) cov += 1.0 - si;
+    m.coverage = cov / double(sv.size());
+    m.control_count = long(sv.size());
+    if (target_) {
+      bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
+      const float h = params_.fluid.smoothing_radius;
+      metrics_grid_.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
+      m.iou = voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), metrics_grid_, mass, h, rho0, 0.5f);
+    }
+  }
+  return m;
+}
+
+namespace {
+bool allFinite(const std::vector<float>& a) {
+  const long n = long(a.size());
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (long i = 0; i < n; ++i) bad |= std::isfinite(a[i]) ? 0 : 1;
+  return !bad;
+}
+}  // namespace
+
+bool CpuBackend::finiteAfter(Phase phase) {
+  const FluidState& s = fluid_.s;
+  const ControlSet& c = controller_.set();
+  switch (phase) {
+    case Phase::Density:
+      return allFinite(fluid_.rho) && allFinite(fluid_.p);
+    case Phase::Forces:
+    case Phase::ControlForces:
+      return allFinite(fluid_.ax) && allFinite(fluid_.ay) && allFinite(fluid_.az);
+    case Phase::ControlScale:
+      return allFinite(controller_.fields().s) && allFinite(controller_.fields().ux) &&
+             allFinite(controller_.fields().uy) && allFinite(controller_.fields().uz);
+    case Phase::Integrate:
+      return allFinite(s.x) && allFinite(s.y) && allFinite(s.z) && allFinite(s.vx) && allFinite(s.vy) &&
+             allFinite(s.vz);
+    case Phase::ShapeMatching:
+      return allFinite(c.x) && allFinite(c.y) && allFinite(c.z) && allFinite(c.vx) && allFinite(c.vy) &&
+             allFinite(c.vz);
+    default:
+      return true;
+  }
+}
+
+}  // namespace ff

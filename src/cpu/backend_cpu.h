@@ -1,0 +1,57 @@
+// backend_cpu.h - the OpenMP reference backend: every phase on the host.
+#pragma once
+#include <memory>
+
+#include "control/controller.h"
+#include "core/backend.h"
+#include "cpu/fluid_cpu.h"
+#include "cpu/pressure_solver.h"
+#include "metrics/iou.h"
+
+namespace ff {
+
+class CpuBackend : public Backend {
+ public:
+  explicit CpuBackend(int threads = 0);  // 0: OpenMP's default
+  std::string name() const override { return "cpu"; }
+  std::string device() const override;
+
+  void init(const Params& params, const ContainerDesc& box, const FluidState& fluid) override;
+  void setParams(const Params& params) override;
+  void setControl(ControlSet set) override;
+  void setMetricsTarget(const TargetShape* target) override { target_ = target; }
+
+  void buildGrid() override;
+  void computeDensity() override;
+  void computeForces() override;
+  void computeControlScale() override;
+  void applyControlForces(float dt) override;
+  void integrate(float dt) override;
+  int shapeMatching(float dt) override;
+  StepMetrics computeMetrics() override;
+  bool finiteAfter(Phase phase) override;
+
+  void readFluid(FluidState& out) override { out = fluid_.s; }
+  void readDensity(std::vector<float>& rho, std::vector<float>& p) override { rho = fluid_.rho, p = fluid_.p; }
+  void readControl(ControlSet& set, ControlFields& fields) override {
+    set = controller_.set(), fields = controller_.fields();
+  }
+
+  // Direct access for tests and tools.
+  CpuFluid& fluid() { return fluid_; }
+  Controller& controller() { return controller_; }
+
+ private:
+  FluidView view() const;
+  int threads_;
+  Params params_;
+  ContainerDesc box_;
+  CpuFluid fluid_;
+  std::unique_ptr<PressureSolver> solver_;
+  Controller controller_;
+  const TargetShape* target_ = nullptr;
+  RigidFrame frame_;
+  UniformGrid metrics_grid_;
+};
+
+}  // namespace ff

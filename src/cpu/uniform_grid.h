@@ -1,0 +1,69 @@
+// uniform_grid.h - neighbour search on a uniform grid, rebuilt by counting sort.
+//
+// Cells are at least `cell` wide, so every point within `cell` of a point lies
+// in one of the 27 surrounding cells. Cell (ix, iy, iz) has linear index
+// ix + nx * (iy + ny * iz): the three cells of a row along x are contiguous
+// in the sorted order, so a neighbour query visits 9 contiguous ranges.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace ff {
+
+class UniformGrid {
+ public:
+  // Builds the grid over the bounding box of the n points. `order` receives
+  // the permutation that sorts the points by cell (stable: equal cells keep
+  // their input order). The grid is enlarged by one cell on each side, and the
+  // cell size is raised if the box would need more than `max_cells` cells.
+  void build(size_t n, const float* x, const float* y, const float* z, float cell,
+             size_t max_cells = size_t(1) << 24);
+
+  // After build: points of cell c (in sorted order) are order()[start[c] .. start[c+1]).
+  const std::vector<uint32_t>& order() const { return order_; }
+  const std::vector<uint32_t>& cellStart() const { return start_; }
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  int nz() const { return nz_; }
+  float cellSize() const { return cell_; }
+  float originX() const { return ox_; }
+  float originY() const { return oy_; }
+  float originZ() const { return oz_; }
+
+  int cellCoord(float v, float o, int n) const {
+    int c = int((v - o) * inv_cell_);
+    return c < 0 ? 0 : (c >= n ? n - 1 : c);
+  }
+
+  // Calls f(begin, end) for each of the 9 contiguous sorted ranges that make up
+  // the 27 cells around (px, py, pz). Indices are positions in sorted order.
+  template <class F>
+  void forEachRange(float px, float py, float pz, F&& f) const {
+    int cx = cellCoord(px, ox_, nx_), cy = cellCoord(py, oy_, ny_), cz = cellCoord(pz, oz_, nz_);
+    int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < nx_ ? cx + 1 : nx_ - 1;
+    for (int z = cz - 1; z <= cz + 1; ++z) {
+      if (z < 0 || z >= nz_) continue;
+      for (int y = cy - 1; y <= cy + 1; ++y) {
+        if (y < 0 || y >= ny_) continue;
+        size_t row = size_t(nx_) * (size_t(y) + size_t(ny_) * size_t(z));
+        uint32_t b = start_[row + x0], e = start_[row + x1 + 1];
+        if (b < e) f(b, e);
+      }
+    }
+  }
+
+ private:
+  float ox_ = 0, oy_ = 0, oz_ = 0, cell_ = 1, inv_cell_ = 1;
+  int nx_ = 1, ny_ = 1, nz_ = 1;
+  std::vector<uint32_t> start_;  // size ncells + 1
+  std::vector<uint32_t> order_;
+  std::vector<uint32_t> cell_of_;
+  std::vector<uint32_t> fill_;
+};
+
+// Applies a permutation: out[k] = in[order[k]] for every array, in place.
+void permute(std::vector<float>& a, const std::vector<uint32_t>& order, std::vector<float>& scratch);
+void permute(std::vector<uint32_t>& a, const std::vector<uint32_t>& order, std::vector<uint32_t>& scratch);
+
+}  // namespace ff

@@ -1,0 +1,24 @@
+// iou.h - voxel intersection over union between the target and the fluid.
+#pragma once
+#include "cpu/uniform_grid.h"
+#include "ff_rotation.h"
+#include "target/target_shape.h"
+
+namespace ff {
+
+struct RigidFrame {
+  ff_quat q = FF_Q(0.0f, 0.0f, 0.0f, 1.0f);  // rotation from the target frame to the world
+  float c[3] = {0, 0, 0};                      // world position of the target's rest centre `rest_c`
+  float rest_c[3] = {0, 0, 0};
+};
+
+// The target's voxel grid, padded by `pad` voxels on every side, is placed in
+// the world by `frame` (x_world = R (x_rest - rest_c) + c). A voxel is a target
+// voxel if it is inside the shape, a fluid voxel if the SPH density of the
+// fluid particles at its centre is at least `fraction` * rho0. Returns
+// |target & fluid| / |target | fluid|. `grid` indexes the particles (any order)
+// with cell size >= h.
+double voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x, const float* y,
+                const float* z, const UniformGrid& grid, float mass, float h, float rho0, float fraction);
+
+}  // namespace ff

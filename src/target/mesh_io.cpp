@@ -1,0 +1,206 @@
+// mesh_io.cpp - loadMesh (assimp) and meshVolume.
+#include "target/mesh_io.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace ff {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error(path + ": " + what);
+}
+
+std::string readHead(const std::string& path, size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(max_bytes, '\0');
+  in.read(&head[0], std::streamsize(max_bytes));
+  head.resize(size_t(in.gcount()));
+  return head;
+}
+
+// assimp trusts the element counts of PLY and OFF headers: a garbled header
+// that claims billions of elements makes it allocate (bad_alloc) or loop for
+// minutes. Every element takes at least one byte, so a count above the file
+// size is rejected here, before assimp sees the file.
+void checkDeclaredCounts(const std::string& path, uintmax_t file_size) {
+  const std::string head = readHead(path, 65536);
+  std::istringstream lines(head);
+  std::string line;
+  uintmax_t declared = 0;
+  if (head.compare(0, 3, "ply") == 0 || head.compare(0, 3, "PLY") == 0) {
+    while (std::getline(lines, line) && line.compare(0, 10, "end_header") != 0) {
+      std::istringstream words(line);
+      std::string keyword, name;
+      long long count = 0;
+      if (words >> keyword >> name >> count && keyword == "element") {
+        if (count < 0) fail(path, "garbled PLY header: element '" + name + "' has a negative count");
+        declared += uintmax_t(count);
+      }
+    }
+  } else {
+    std::istringstream words(head);
+    std::string token;
+    while (words >> token && token[0] == '#') std::getline(words, line);  // comments
+    if (token.size() < 3 || token.compare(token.size() - 3, 3, "OFF") != 0) return;
+    if (token == "nOFF") words >> token;  // the dimension
+    long long nv = 0, nf = 0;
+    if (!(words >> nv >> nf)) return;  // not the text layout this check knows: leave it to assimp
+    if (nv < 0 || nf < 0) fail(path, "garbled OFF header: negative vertex or face count");
+    declared = uintmax_t(nv) + uintmax_t(nf);
+  }
+  if (declared > file_size) {
+    fail(path, "garbled or truncated file: its header declares " + std::to_string(declared) +
+                   " elements but the file holds only " + std::to_string(file_size) + " bytes");
+  }
+}
+
+void collectNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, std::vector<bool>& used,
+                 TriangleMesh& out, const std::string& path) {
+  const aiMatrix4x4 transform = parent * node->mTransformation;
+  for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+    const unsigned mesh_index = node->mMeshes[m];
+    if (mesh_index >= scene->mNumMeshes) fail(path, "garbled file: a node refers to a missing mesh");
+    used[mesh_index] = true;
+    const aiMesh* mesh = scene->mMeshes[mesh_index];
+    const int base = int(out.vertices.size());
+    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+      const aiVector3D p = transform * mesh->mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        fail(path, "vertex " + std::to_string(v + 1) + " has a NaN or infinite coordinate");
+      }
+      out.vertices.emplace_back(p.x, p.y, p.z);
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines enclose nothing
+      std::array<int, 3> tri{};
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          fail(path, "face " + std::to_string(f + 1) + " refers to vertex " +
+                         std::to_string(face.mIndices[k] + 1) + " but there are only " +
+                         std::to_string(mesh->mNumVertices));
+        }
+        tri[k] = base + int(face.mIndices[k]);
+      }
+      out.triangles.push_back(tri);
+    }
+  }
+  for (unsigned c = 0; c < node->mNumChildren; ++c)
+    collectNode(scene, node->mChildren[c], transform, used, out, path);
+}
+
+// Keeps only the vertices that triangles use, so stray points do not widen the bounds.
+void dropUnusedVertices(TriangleMesh& mesh) {
+  std::vector<int> remap(mesh.vertices.size(), -1);
+  std::vector<Vec3> kept;
+  for (auto& tri : mesh.triangles) {
+    for (int& index : tri) {
+      if (remap[size_t(index)] < 0) {
+        remap[size_t(index)] = int(kept.size());
+        kept.push_back(mesh.vertices[size_t(index)]);
+      }
+      index = remap[size_t(index)];
+    }
+  }
+  mesh.vertices.swap(kept);
+}
+
+void checkNotDegenerate(const TriangleMesh& mesh, const std::string& path) {
+  Vec3 lo, hi;
+  meshBounds(mesh, lo, hi);
+  const Eigen::Vector3d extent = (hi - lo).cast<double>();
+  const double largest = extent.maxCoeff();
+  static const char* kAxis[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    if (!(extent[a] > 1e-6 * largest))
+      fail(path, std::string("degenerate mesh: it is flat along ") + kAxis[a]);
+  }
+  const double volume = meshVolume(mesh);
+  if (!(std::abs(volume) > 1e-6 * extent.prod())) {
+    std::ostringstream msg;
+    msg << "degenerate mesh: it encloses (almost) no volume (" << volume
+        << " by the divergence theorem); is the surface open or inconsistently wound?";
+    fail(path, msg.str());
+  }
+}
+
+}  // namespace
+
+TriangleMesh loadMesh(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) fail(path, "file not found");
+  if (fs::is_directory(status)) fail(path, "is a folder, not a mesh file");
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec) fail(path, "cannot read the file: " + ec.message());
+  if (size == 0) fail(path, "the file is empty");
+  checkDeclaredCounts(path, size);
+
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  try {
+    // ValidateDataStructure runs first and rejects out-of-range indices before
+    // the other steps touch them.
+    scene = importer.ReadFile(
+        path, aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+  } catch (const std::exception& e) {
+    fail(path, std::string("cannot read the mesh (assimp: ") + e.what() + ")");
+  }
+  if (!scene) fail(path, std::string("cannot read the mesh (assimp: ") + importer.GetErrorString() + ")");
+  if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+    fail(path, "cannot read the mesh (assimp: incomplete scene)");
+
+  TriangleMesh mesh;
+  std::vector<bool> used(scene->mNumMeshes, false);
+  if (scene->mRootNode) collectNode(scene, scene->mRootNode, aiMatrix4x4(), used, mesh, path);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {  // meshes no node places: take them as they are
+    if (used[m]) continue;
+    aiNode lone;
+    lone.mNumMeshes = 1;
+    lone.mMeshes = new unsigned[1]{m};
+    collectNode(scene, &lone, aiMatrix4x4(), used, mesh, path);
+  }
+  if (mesh.triangles.empty()) fail(path, "no triangles in the file");
+  dropUnusedVertices(mesh);
+  checkNotDegenerate(mesh, path);
+  return mesh;
+}
+
+double meshVolume(const TriangleMesh& mesh) {
+  double six_volume = 0.0;
+  for (const auto& tri : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.vertices[size_t(tri[0])].cast<double>();
+    const Eigen::Vector3d b = mesh.vertices[size_t(tri[1])].cast<double>();
+    const Eigen::Vector3d c = mesh.vertices[size_t(tri[2])].cast<double>();
+    six_volume += a.dot(b.cross(c));
+  }
+  return six_volume / 6.0;
+}
+
+void meshBounds(const TriangleMesh& mesh, Vec3& lo, Vec3& hi) {
+  if (mesh.vertices.empty()) {
+    lo = hi = Vec3::Zero();
+    return;
+  }
+  lo = hi = mesh.vertices.front();
+  for (const Vec3& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+}
+
+}  // namespace ff

@@ -1,0 +1,290 @@
+// target_shape.cpp - TargetSpec naming, buildTarget, TargetCache and
+// resolveMeshPath.
+#include "target/target_shape.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "core/error.h"
+#include "target/analytic_shapes.h"
+#include "target/euler_rotation.h"
+#include "target/mesh_io.h"
+#include "target/voxel_size_search.h"
+#include "target/voxelize.h"
+
+namespace ff {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kCountTolerance = 0.03;  // control_count: within 3%
+constexpr size_t kMinInside = 8;
+
+const char* kindName(TargetKind kind) {
+  switch (kind) {
+    case TargetKind::Mesh:
+      return "mesh";
+    case TargetKind::Sphere:
+      return "sphere";
+    case TargetKind::Box:
+      return "box";
+    case TargetKind::Torus:
+      return "torus";
+    case TargetKind::Capsule:
+      return "capsule";
+  }
+  return "?";
+}
+
+// The shape, ready to voxelise: its bounding box centred at the origin and
+// scaled to the requested volume.
+struct PreparedShape {
+  bool is_mesh = false;
+  TriangleMesh mesh;
+  AnalyticShape analytic;
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};
+  double volume = 0.0;
+};
+
+PreparedShape prepareMesh(const TargetSpec& spec, double volume) {
+  const std::string path = spec.resolved_path.empty() ? resolveMeshPath(spec.mesh, "") : spec.resolved_path;
+  PreparedShape out;
+  out.is_mesh = true;
+  out.mesh = loadMesh(path);
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(spec.rotation_deg[a]))
+      throw Error("target '" + spec.label() + "': rotation_deg must be finite");
+  }
+  TriangleMesh& mesh = out.mesh;
+  Vec3 lo, hi;
+  meshBounds(mesh, lo, hi);
+  const Eigen::Vector3d centre = 0.5 * (lo + hi).cast<double>();
+  const Eigen::Matrix3d rotation = eulerRotationXYZ(spec.rotation_deg);
+  std::vector<Eigen::Vector3d> points(mesh.vertices.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] = rotation * (mesh.vertices[i].cast<double>() - centre);
+  for (size_t i = 0; i < points.size(); ++i) mesh.vertices[i] = points[i].cast<float>();
+
+  double mesh_volume = meshVolume(mesh);
+  // Inside-out meshes (all faces wound inwards) are accepted: the winding is
+  // flipped. Ray parity ignores the winding anyway, so only the sign of the
+  // volume matters. (loadMesh already rejected meshes with ~zero volume.)
+  if (mesh_volume < 0.0) {
+    for (auto& tri : mesh.triangles) std::swap(tri[1], tri[2]);
+    mesh_volume = -mesh_volume;
+  }
+  // Recentre the rotated bounding box, then scale about the origin.
+  Eigen::Vector3d rlo = points.empty() ? Eigen::Vector3d::Zero() : points[0], rhi = rlo;
+  for (const auto& p : points) {
+    rlo = rlo.cwiseMin(p);
+    rhi = rhi.cwiseMax(p);
+  }
+  const Eigen::Vector3d rcentre = 0.5 * (rlo + rhi);
+  const double scale = std::cbrt(volume / mesh_volume);
+  for (size_t i = 0; i < points.size(); ++i) mesh.vertices[i] = (scale * (points[i] - rcentre)).cast<float>();
+  meshBounds(mesh, out.lo, out.hi);
+  out.volume = meshVolume(mesh);
+  return out;
+}
+
+PreparedShape prepareAnalytic(const TargetSpec& spec, double volume) {
+  PreparedShape out;
+  out.analytic = scaledToVolume(makeAnalyticShape(spec), volume);
+  const Eigen::Vector3d half = out.analytic.halfExtent();
+  out.hi = half.cast<float>();
+  out.lo = -out.hi;
+  out.volume = out.analytic.volume();
+  return out;
+}
+
+VoxelGrid voxelizePrepared(const PreparedShape& shape, float voxel, const Vec3& shift) {
+  VoxelGrid grid = makeVoxelGrid(shape.lo, shape.hi, voxel, shift);
+  if (shape.is_mesh) {
+    voxelizeMesh(shape.mesh, grid);
+  } else {
+    voxelizeAnalytic(shape.analytic, grid);
+  }
+  return grid;
+}
+
+std::string where(const TargetSpec& spec) {
+  std::string s = "target '" + spec.label() + "'";
+  if (spec.kind == TargetKind::Mesh)
+    s += " (" + (spec.resolved_path.empty() ? spec.mesh : spec.resolved_path) + ")";
+  return s;
+}
+
+double volumeToUse(const TargetSpec& spec, double fluid_rest_volume) {
+  const double volume = spec.volume > 0.0f ? double(spec.volume) : fluid_rest_volume;
+  if (!(volume > 0.0) || !std::isfinite(volume)) {
+    std::ostringstream msg;
+    msg << where(spec) << ": the target volume must be positive (volume " << spec.volume
+        << ", fluid rest volume " << fluid_rest_volume << ")";
+    throw Error(msg.str());
+  }
+  return volume;
+}
+
+}  // namespace
+
+std::string TargetSpec::label() const {
+  if (kind != TargetKind::Mesh) return kindName(kind);
+  const std::string& name = mesh.empty() ? resolved_path : mesh;
+  const std::string base = fs::path(name).filename().string();
+  return base.empty() ? name : base;
+}
+
+std::string TargetSpec::cacheKey(float volume_used) const {
+  std::ostringstream key;
+  key.precision(9);
+  key << kindName(kind);
+  switch (kind) {
+    case TargetKind::Mesh:
+      key << "|path=" << (resolved_path.empty() ? mesh : resolved_path);
+      break;
+    case TargetKind::Sphere:
+      break;
+    case TargetKind::Box:
+      key << "|box=" << box_size.x() << "," << box_size.y() << "," << box_size.z();
+      break;
+    case TargetKind::Torus:
+      key << "|torus=" << torus_major << "," << torus_minor;
+      break;
+    case TargetKind::Capsule:
+      key << "|capsule=" << capsule_radius << "," << capsule_length;
+      break;
+  }
+  key << "|rot=" << rotation_deg.x() << "," << rotation_deg.y() << "," << rotation_deg.z();
+  key << "|count=" << control_count << "|voxel=" << voxel_size << "|volume=" << volume_used;
+  return key.str();
+}
+
+size_t VoxelGrid::countInside() const {
+  size_t n = 0;
+  for (uint8_t v : inside) n += v != 0;
+  return n;
+}
+
+Vec3 TargetShape::boundsMin() const {
+  if (reference.empty()) return Vec3::Zero();
+  Vec3 lo = reference.front();
+  for (const Vec3& p : reference) lo = lo.cwiseMin(p);
+  return lo - Vec3::Constant(0.5f * grid.voxel);
+}
+
+Vec3 TargetShape::boundsMax() const {
+  if (reference.empty()) return Vec3::Zero();
+  Vec3 hi = reference.front();
+  for (const Vec3& p : reference) hi = hi.cwiseMax(p);
+  return hi + Vec3::Constant(0.5f * grid.voxel);
+}
+
+TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size) {
+  const double volume = volumeToUse(spec, fluid_rest_volume);
+  if (spec.control_count < 0 || spec.voxel_size < 0.0f || !std::isfinite(spec.voxel_size)) {
+    throw Error(where(spec) + ": control_count and voxel_size must not be negative");
+  }
+  if (spec.control_count > 0 && spec.voxel_size > 0.0f) {
+    throw Error(where(spec) + ": give either control_count or voxel_size, not both");
+  }
+  if (spec.control_count > 0 && size_t(spec.control_count) < kMinInside) {
+    throw Error(where(spec) + ": control_count must be at least " + std::to_string(kMinInside));
+  }
+  const PreparedShape shape =
+      spec.kind == TargetKind::Mesh ? prepareMesh(spec, volume) : prepareAnalytic(spec, volume);
+
+  TargetShape target;
+  target.label = spec.label();
+  target.shape_volume = shape.volume;
+  const std::string context = where(spec);
+  auto voxelize = [&shape, &context](float voxel, const Vec3& shift) {
+    try {
+      return voxelizePrepared(shape, voxel, shift);
+    } catch (const Error& e) {
+      throw Error(context + ": " + e.what());
+    }
+  };
+  if (spec.voxel_size > 0.0f) {
+    target.grid = voxelize(spec.voxel_size, Vec3::Zero());
+  } else if (spec.control_count > 0) {
+    target.grid = searchVoxelSize(spec.control_count, kCountTolerance, volume, voxelize, context);
+  } else {
+    target.grid = voxelize(default_voxel_size, Vec3::Zero());
+  }
+
+  const VoxelGrid& g = target.grid;
+  target.reference.reserve(g.countInside());
+  for (int k = 0; k < g.nz; ++k) {
+    for (int j = 0; j < g.ny; ++j) {
+      for (int i = 0; i < g.nx; ++i) {
+        if (g.inside[g.index(i, j, k)]) target.reference.push_back(g.center(i, j, k));
+      }
+    }
+  }
+  if (target.reference.size() < kMinInside) {
+    std::ostringstream msg;
+    msg << where(spec) << ": only " << target.reference.size() << " voxel(s) inside at voxel size " << g.voxel
+        << " (at least " << kMinInside << " needed): the shape (volume " << volume
+        << ") is too small for the voxel size; use a smaller voxel_size or a control_count";
+    throw Error(msg.str());
+  }
+  return target;
+}
+
+const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_volume,
+                                    float default_voxel_size) {
+  const double volume = volumeToUse(spec, fluid_rest_volume);
+  std::string key = spec.cacheKey(float(volume));
+  if (spec.control_count <= 0 && spec.voxel_size <= 0.0f) {
+    std::ostringstream suffix;
+    suffix.precision(9);
+    suffix << "|default_voxel=" << default_voxel_size;
+    key += suffix.str();
+  }
+  for (const auto& entry : entries_) {
+    if (entry.first == key) return *entry.second;
+  }
+  auto shape = std::make_unique<TargetShape>(buildTarget(spec, fluid_rest_volume, default_voxel_size));
+  entries_.emplace_back(key, std::move(shape));
+  return *entries_.back().second;
+}
+
+std::string resolveMeshPath(const std::string& name, const std::string& scene_dir) {
+  auto isFile = [](const fs::path& p) {
+    std::error_code ec;
+    return fs::is_regular_file(p, ec);
+  };
+  if (name.empty()) throw Error("mesh path is empty");
+  const fs::path given(name);
+  std::vector<std::string> tried;
+  if (given.is_absolute()) {
+    if (isFile(given)) return given.lexically_normal().string();
+    tried.push_back(given.parent_path().string());
+  } else {
+    if (!scene_dir.empty()) {
+      const fs::path candidate = fs::path(scene_dir) / given;
+      if (isFile(candidate)) return candidate.lexically_normal().string();
+      tried.push_back(scene_dir);
+    }
+    if (const char* env = std::getenv("FLOWFORM_MESH_PATH")) {
+      std::stringstream folders(env);
+      std::string folder;
+      while (std::getline(folders, folder, ':')) {
+        if (folder.empty()) continue;
+        const fs::path candidate = fs::path(folder) / given;
+        if (isFile(candidate)) return candidate.lexically_normal().string();
+        tried.push_back(folder);
+      }
+    }
+  }
+  std::string msg = "mesh '" + name + "' not found; looked in: ";
+  if (tried.empty()) msg += "(nowhere)";
+  for (size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "") + tried[i];
+  msg += " (set FLOWFORM_MESH_PATH to a colon-separated list of folders holding meshes";
+  msg += given.is_absolute() ? ", or fix the absolute path)" : ")";
+  throw Error(msg);
+}
+
+}  // namespace ff

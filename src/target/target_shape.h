@@ -1,0 +1,88 @@
+// target_shape.h - what the user wants the fluid to become: a voxelised shape
+// whose inside voxel centres are the reference particles (paper Fig. 6).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace ff {
+
+enum class TargetKind { Mesh, Sphere, Box, Torus, Capsule };
+
+// What a scene (or the API) asks for. Analytic shapes give proportions only:
+// like meshes they are scaled to `volume` (default: the controlled fluid's rest
+// volume) before voxelising.
+struct TargetSpec {
+  TargetKind kind = TargetKind::Sphere;
+  std::string mesh;                                    // for Mesh: the path as the user wrote it
+  std::string resolved_path;                           // for Mesh: the file actually read
+  Vec3 box_size{1.0f, 1.0f, 1.0f};                     // Box: edge lengths (proportions)
+  float torus_major = 1.0f, torus_minor = 0.4f;        // Torus around the y axis
+  float capsule_radius = 0.5f, capsule_length = 1.0f;  // Capsule along y; length of the cylinder part
+  Vec3 rotation_deg{0.0f, 0.0f, 0.0f};  // applied to the shape before voxelising (x, then y, then z)
+  int control_count = 0;    // > 0: choose the voxel size so the reference count is within 3% of this
+  float voxel_size = 0.0f;  // > 0: this voxel size (control_count must then be 0)
+  float volume = 0.0f;      // > 0: scale to this volume instead of the fluid's rest volume
+
+  // A short human-readable name: "sphere", "bunny.obj", ...
+  std::string label() const;
+  // A key that identifies the voxelisation (used by the cache).
+  std::string cacheKey(float volume_used) const;
+};
+
+// A regular grid of voxels. Voxel (i, j, k) spans origin + [i, i+1) * voxel etc.
+// Index of (i, j, k) is i + nx * (j + ny * k).
+struct VoxelGrid {
+  Vec3 origin{0.0f, 0.0f, 0.0f};
+  float voxel = 0.0f;
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<uint8_t> inside;  // 1 = inside the shape
+
+  size_t index(int i, int j, int k) const {
+    return size_t(i) + size_t(nx) * (size_t(j) + size_t(ny) * size_t(k));
+  }
+  Vec3 center(int i, int j, int k) const {
+    return origin + voxel * Vec3(float(i) + 0.5f, float(j) + 0.5f, float(k) + 0.5f);
+  }
+  size_t countInside() const;
+};
+
+struct TargetShape {
+  std::string label;
+  VoxelGrid grid;               // shape frame: the shape's bounding box is centred at the origin
+  std::vector<Vec3> reference;  // centres of the inside voxels, in grid index order
+  double shape_volume = 0.0;    // volume of the scaled continuous shape (analytic, or by divergence theorem)
+  double voxel_volume() const {
+    return double(reference.size()) * double(grid.voxel) * grid.voxel * grid.voxel;
+  }
+  Vec3 boundsMin() const;  // bounding box of the reference particles (voxel extents included)
+  Vec3 boundsMax() const;
+};
+
+// Builds the target: loads/creates the shape, scales it to `volume` (or
+// spec.volume), voxelises it and places the reference particles.
+// Throws ff::Error naming the file (for meshes) and the problem.
+TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
+
+// Keeps every voxelisation made during a run, so that switching back to a
+// target costs nothing.
+class TargetCache {
+ public:
+  const TargetShape& get(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
+  size_t size() const { return entries_.size(); }
+
+ private:
+  // unique_ptr: the references handed out stay valid as entries are added.
+  std::vector<std::pair<std::string, std::unique_ptr<TargetShape>>> entries_;
+};
+
+// Resolves a mesh path: as given if absolute; else relative to `scene_dir`
+// (when not empty); else along FLOWFORM_MESH_PATH (colon-separated folders).
+// Throws ff::Error listing every place tried.
+std::string resolveMeshPath(const std::string& name, const std::string& scene_dir);
+
+}  // namespace ff

@@ -1,0 +1,465 @@
+// test_scene_json.cpp - scene files, parameter presets and their validation.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "core/params.h"
+#include "scene/scene.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const char* kSource = "scenes/x.json";
+
+// A small valid scene; tests change one thing in it.
+json baseScene() {
+  return json::parse(R"({
+    "name": "t", "preset": "paper", "duration": 1.0,
+    "container": {"min": [0, 0, 0], "max": [0.3, 0.3, 0.3]},
+    "fluid": [{"origin": [0.1, 0.0, 0.1], "dims": [4, 5, 6]}],
+    "region": "all",
+    "schedule": [{"time": 0, "target": "sphere"}, {"time": 1.5, "target": "torus"}]
+  })");
+}
+
+// The ff::Error message that parsing `text` gives, or "" when it parses.
+std::string errorOf(const std::string& text) {
+  try {
+    ff::parseScene(text, kSource, "");
+  } catch (const ff::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Expects parsing to fail with a message holding the file name and every one
+// of `parts` (the key path, the problem).
+void expectError(const std::string& text, std::initializer_list<const char*> parts) {
+  std::string msg = errorOf(text);
+  ASSERT_FALSE(msg.empty()) << "parsed without error: " << text;
+  EXPECT_NE(msg.find(kSource), std::string::npos) << msg;
+  for (const char* p : parts)
+    EXPECT_NE(msg.find(p), std::string::npos) << "missing '" << p << "' in: " << msg;
+}
+
+std::string sceneFile(const std::string& name) {
+  return std::string(FF_SOURCE_DIR) + "/scenes/" + name;
+}
+
+class SceneJson : public ::testing::Test {
+ protected:
+  void SetUp() override { setenv("FLOWFORM_MESH_PATH", FF_SHARED_MESHES, 1); }
+};
+
+}  // namespace
+
+using ff::parseScene;
+
+TEST_F(SceneJson, BaseSceneParses) {
+  ff::SceneDesc s = parseScene(baseScene().dump(), kSource, "");
+  EXPECT_EQ(s.name, "t");
+  EXPECT_EQ(s.source, kSource);
+  ASSERT_EQ(s.fluid.size(), 1u);
+  EXPECT_EQ(s.fluidCount(), 4 * 5 * 6);
+  EXPECT_FLOAT_EQ(s.fluid[0].spacing, 0.0f);
+  EXPECT_EQ(s.region.kind, ff::RegionDesc::Kind::All);
+  ASSERT_EQ(s.schedule.size(), 2u);
+  EXPECT_EQ(s.schedule[0].target.kind, ff::TargetKind::Sphere);
+  EXPECT_EQ(s.schedule[1].target.kind, ff::TargetKind::Torus);
+  EXPECT_DOUBLE_EQ(s.schedule[1].time, 1.5);
+  EXPECT_DOUBLE_EQ(s.duration, 1.0);
+}
+
+TEST_F(SceneJson, EverySceneFileParses) {
+  int n = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(FF_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    ff::SceneDesc s;
+    ASSERT_NO_THROW(s = ff::loadScene(entry.path().string()));
+    EXPECT_GT(s.fluidCount(), 0);
+    EXPECT_FALSE(s.schedule.empty());
+    for (const ff::ScheduleEntry& e : s.schedule)
+      if (e.target.kind == ff::TargetKind::Mesh) {
+        EXPECT_TRUE(fs::exists(e.target.resolved_path)) << e.target.resolved_path;
+      }
+    ++n;
+  }
+  EXPECT_GE(n, 6);
+}
+
+TEST_F(SceneJson, DefaultSceneIsBuiltInShapesOnly) {
+  ff::SceneDesc s = ff::defaultScene();
+  EXPECT_EQ(s.source, "<built-in default scene>");
+  EXPECT_EQ(s.fluidCount(), 8000);
+  ASSERT_EQ(s.schedule.size(), 3u);
+  EXPECT_EQ(s.schedule[0].target.kind, ff::TargetKind::Sphere);
+  EXPECT_EQ(s.schedule[1].target.kind, ff::TargetKind::Torus);
+  EXPECT_EQ(s.schedule[2].target.kind, ff::TargetKind::Capsule);
+  EXPECT_DOUBLE_EQ(s.schedule[0].time, 0.0);
+  EXPECT_DOUBLE_EQ(s.schedule[1].time, 2.0);
+  EXPECT_DOUBLE_EQ(s.schedule[2].time, 4.0);
+  EXPECT_DOUBLE_EQ(s.duration, 6.0);
+  for (const ff::ScheduleEntry& e : s.schedule) EXPECT_NE(e.target.kind, ff::TargetKind::Mesh);
+}
+
+TEST_F(SceneJson, DefaultSceneWorksWithoutMeshPath) {
+  unsetenv("FLOWFORM_MESH_PATH");
+  EXPECT_NO_THROW(ff::defaultScene());
+}
+
+TEST_F(SceneJson, TableOneScenes) {
+  const struct {
+    const char* file;
+    const char* mesh;
+    int control_count;
+  } kScenes[] = {{"bunny.json", "bunny.obj", 3197},
+                 {"teapot.json", "teapot.obj", 2154},
+                 {"runner.json", "runner.obj", 549},
+                 {"dragon.json", "dragon.obj", 2714}};
+  for (const auto& k : kScenes) {
+    SCOPED_TRACE(k.file);
+    ff::SceneDesc s = ff::loadScene(sceneFile(k.file));
+    EXPECT_EQ(s.fluidCount(), 12000);
+    EXPECT_EQ(s.preset, "paper");
+    EXPECT_DOUBLE_EQ(s.duration, 4.0);
+    ASSERT_EQ(s.schedule.size(), 1u);
+    const ff::TargetSpec& t = s.schedule[0].target;
+    EXPECT_EQ(t.kind, ff::TargetKind::Mesh);
+    EXPECT_EQ(t.mesh, k.mesh);
+    EXPECT_EQ(t.control_count, k.control_count);
+    EXPECT_EQ(fs::path(t.resolved_path).filename().string(), k.mesh);
+    EXPECT_TRUE(fs::exists(t.resolved_path)) << t.resolved_path;
+  }
+}
+
+TEST_F(SceneJson, BunnyBoxTeapotSchedule) {
+  ff::SceneDesc s = ff::loadScene(sceneFile("bunny_box_teapot.json"));
+  EXPECT_EQ(s.fluidCount(), 12000);
+  EXPECT_DOUBLE_EQ(s.duration, 9.0);
+  ASSERT_EQ(s.schedule.size(), 3u);
+  EXPECT_EQ(s.schedule[0].target.mesh, "bunny.obj");
+  EXPECT_EQ(s.schedule[1].target.kind, ff::TargetKind::Box);
+  EXPECT_EQ(s.schedule[2].target.mesh, "teapot.obj");
+  EXPECT_DOUBLE_EQ(s.schedule[1].time, 3.0);
+  EXPECT_DOUBLE_EQ(s.schedule[2].time, 6.0);
+}
+
+TEST_F(SceneJson, OverridesApplyOnTopOfPreset) {
+  json j = baseScene();
+  j["params"]["fluid"]["gas_constant"] = 0.7;
+  j["params"]["fluid"]["gravity"] = {0.0, -1.0, 0.0};
+  j["params"]["control"]["units"] = "force_density";
+  j["params"]["shape_matching"]["cluster_stride"] = 3;
+  ff::SceneDesc s = parseScene(j.dump(), kSource, "");
+  ff::Params paper = ff::presetParams("paper");
+  EXPECT_FLOAT_EQ(s.params.fluid.gas_constant, 0.7f);
+  EXPECT_FLOAT_EQ(s.params.fluid.gravity[1], -1.0f);
+  EXPECT_EQ(s.params.control.units, ff::ControlForceUnits::ForceDensity);
+  EXPECT_EQ(s.params.shape.cluster_stride, 3);
+  // Everything not overridden keeps the preset's value.
+  EXPECT_FLOAT_EQ(s.params.fluid.viscosity, paper.fluid.viscosity);
+  EXPECT_FLOAT_EQ(s.params.fluid.particle_mass, paper.fluid.particle_mass);
+  EXPECT_FLOAT_EQ(s.params.control.attraction, paper.control.attraction);
+  EXPECT_FLOAT_EQ(s.params.shape.stiffness, paper.shape.stiffness);
+  EXPECT_EQ(s.params.shape.cluster_half_width, paper.shape.cluster_half_width);
+}
+
+TEST_F(SceneJson, TargetForms) {
+  json j = baseScene();
+  j.erase("schedule");
+  j["target"] = {
+      {"shape", "torus"}, {"major", 2.0}, {"minor", 0.5}, {"rotation", {90, 0, 0}}, {"voxel_size", 0.01}};
+  ff::SceneDesc s = parseScene(j.dump(), kSource, "");
+  ASSERT_EQ(s.schedule.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.schedule[0].time, 0.0);
+  const ff::TargetSpec& t = s.schedule[0].target;
+  EXPECT_EQ(t.kind, ff::TargetKind::Torus);
+  EXPECT_FLOAT_EQ(t.torus_major, 2.0f);
+  EXPECT_FLOAT_EQ(t.torus_minor, 0.5f);
+  EXPECT_FLOAT_EQ(t.rotation_deg.x(), 90.0f);
+  EXPECT_FLOAT_EQ(t.voxel_size, 0.01f);
+
+  j["target"] = "bunny.obj";
+  s = parseScene(j.dump(), kSource, "");
+  EXPECT_EQ(s.schedule[0].target.kind, ff::TargetKind::Mesh);
+  EXPECT_EQ(s.schedule[0].target.mesh, "bunny.obj");
+  EXPECT_TRUE(fs::exists(s.schedule[0].target.resolved_path));
+
+  j.erase("target");
+  s = parseScene(j.dump(), kSource, "");
+  EXPECT_TRUE(s.schedule.empty());
+}
+
+TEST_F(SceneJson, RegionForms) {
+  json j = baseScene();
+  j["region"] = {{"box", {{"min", {0, 0, 0}}, {"max", {0.1, 0.2, 0.3}}}}};
+  ff::SceneDesc s = parseScene(j.dump(), kSource, "");
+  EXPECT_EQ(s.region.kind, ff::RegionDesc::Kind::Box);
+  EXPECT_FLOAT_EQ(s.region.max.z(), 0.3f);
+  j["region"] = {{"sphere", {{"center", {0.1, 0.1, 0.1}}, {"radius", 0.05}}}};
+  s = parseScene(j.dump(), kSource, "");
+  EXPECT_EQ(s.region.kind, ff::RegionDesc::Kind::Sphere);
+  EXPECT_FLOAT_EQ(s.region.radius, 0.05f);
+}
+
+TEST_F(SceneJson, UnknownTopLevelKey) {
+  json j = baseScene();
+  j["_comment"] = "comments are not allowed";
+  expectError(j.dump(), {"_comment", "unknown key", "expected one of"});
+}
+
+TEST_F(SceneJson, UnknownNestedKeys) {
+  json j = baseScene();
+  j["fluid"][0]["dimz"] = {1, 2, 3};
+  expectError(j.dump(), {"fluid[0].dimz", "unknown key", "origin, dims, spacing, velocity"});
+  j = baseScene();
+  j["params"]["fluid"]["gas_constnt"] = 0.5;
+  expectError(j.dump(), {"params.fluid.gas_constnt", "unknown key"});
+  j = baseScene();
+  j["schedule"][1]["target"] = {{"shape", "sphere"}, {"major", 1.0}};
+  expectError(j.dump(), {"schedule[1].target.major", "unknown key"});
+}
+
+TEST_F(SceneJson, WrongType) {
+  json j = baseScene();
+  j["container"]["max"] = "big";
+  expectError(j.dump(), {"container.max", "must be an array of 3 numbers"});
+  j = baseScene();
+  j["fluid"][0]["dims"] = {4, 5.5, 6};
+  expectError(j.dump(), {"fluid[0].dims[1]", "integer"});
+  j = baseScene();
+  j["duration"] = true;
+  expectError(j.dump(), {"duration", "must be a number"});
+  j = baseScene();
+  j["fluid"] = {{"origin", {0, 0, 0}}};
+  expectError(j.dump(), {"fluid", "must be an array"});
+}
+
+TEST_F(SceneJson, NanAndInfinityRejected) {
+  json j = baseScene();
+  j["params"]["fluid"]["gas_constant"] = "nan";
+  expectError(j.dump(), {"params.fluid.gas_constant", "must be a number"});
+
+  // nlohmann refuses 1e999 (number overflow); the message still names the key.
+  std::string text = baseScene().dump();
+  text.insert(1, "\"params\": {\"fluid\": {\"viscosity\": 0.01,\n \"gas_constant\": 1e999}}, ");
+  expectError(text, {"scenes/x.json:2:", "params.fluid.gas_constant", "out of range", "1e999"});
+
+  j = baseScene();
+  j.erase("duration");
+  text = j.dump();
+  text.insert(1, R"("duration": -1e999, )");
+  expectError(text, {"duration", "out of range"});
+
+  // A finite double that overflows a float.
+  j = baseScene();
+  j["fluid"][0]["velocity"] = {0.0, 1e300, 0.0};
+  expectError(j.dump(), {"fluid[0].velocity[1]", "1e+300"});
+}
+
+TEST_F(SceneJson, DuplicateKey) {
+  std::string text = baseScene().dump();
+  text.insert(1, R"("duration": 2.0, )");
+  expectError(text, {"duration", "duplicate key"});
+}
+
+TEST_F(SceneJson, NegativeGasConstant) {
+  json j = baseScene();
+  j["params"]["fluid"]["gas_constant"] = -0.5;
+  expectError(j.dump(), {"params.fluid.gas_constant", ">= 0", "-0.5"});
+}
+
+TEST_F(SceneJson, BadParamRanges) {
+  json j = baseScene();
+  j["params"]["fluid"]["time_step"] = 0.5;
+  expectError(j.dump(), {"params.fluid.time_step"});
+  j = baseScene();
+  j["params"]["control"]["feedback"] = 1.5;
+  expectError(j.dump(), {"params.control.feedback"});
+  j = baseScene();
+  j["params"]["shape_matching"]["rotation_iterations"] = 0;
+  expectError(j.dump(), {"params.shape_matching.rotation_iterations", ">= 1"});
+  j = baseScene();
+  j["params"]["control"]["units"] = "newtons";
+  expectError(j.dump(), {"params.control.units", "force_density"});
+  j = baseScene();
+  j["preset"] = "fast";
+  expectError(j.dump(), {"preset", "fast", "paper"});
+}
+
+TEST_F(SceneJson, FluidBlockOutsideContainer) {
+  json j = baseScene();
+  j["fluid"][0]["origin"] = {0.28, 0.0, 0.1};  // 4 particles at ~0.0063 reach x = 0.305
+  expectError(j.dump(), {"fluid[0]", "not inside the container"});
+  j = baseScene();
+  j["fluid"][0]["origin"] = {0.1, -0.01, 0.1};
+  expectError(j.dump(), {"fluid[0]", "not inside the container"});
+  j = baseScene();
+  j["fluid"][0]["dims"] = {4, 0, 6};
+  expectError(j.dump(), {"fluid[0].dims[1]", ">= 1"});
+  j = baseScene();
+  j["fluid"] = json::array();
+  expectError(j.dump(), {"fluid", "at least one"});
+}
+
+TEST_F(SceneJson, ContainerMinBelowMax) {
+  json j = baseScene();
+  j["container"]["min"] = {0, 0.3, 0};
+  expectError(j.dump(), {"container", "min must be < max"});
+}
+
+TEST_F(SceneJson, ScheduleMustIncrease) {
+  json j = baseScene();
+  j["schedule"][1]["time"] = 0.0;
+  expectError(j.dump(), {"schedule[1].time", "strictly increasing"});
+  j = baseScene();
+  j["schedule"][0]["time"] = 0.5;
+  expectError(j.dump(), {"schedule[0].time", "time 0"});
+  j = baseScene();
+  j["target"] = "box";
+  expectError(j.dump(), {"target", "not both"});
+}
+
+TEST_F(SceneJson, TargetValueErrors) {
+  json j = baseScene();
+  j["schedule"][1]["target"] = "cube";
+  expectError(j.dump(), {"schedule[1].target", "cube"});
+  j["schedule"][1]["target"] = {{"shape", "box"}, {"control_count", 100}, {"voxel_size", 0.01}};
+  expectError(j.dump(), {"schedule[1].target", "not both"});
+  j["schedule"][1]["target"] = {{"shape", "box"}, {"control_count", 0}};
+  expectError(j.dump(), {"schedule[1].target.control_count", "> 0"});
+  j["schedule"][1]["target"] = {{"shape", "box"}, {"size", {1, -1, 1}}};
+  expectError(j.dump(), {"schedule[1].target.size[1]", "> 0"});
+  j["region"] = {{"sphere", {{"center", {0, 0, 0}}, {"radius", 0}}}};
+  j["schedule"][1]["target"] = "box";
+  expectError(j.dump(), {"region.sphere.radius", "> 0"});
+}
+
+TEST_F(SceneJson, MissingMesh) {
+  json j = baseScene();
+  j["schedule"][1]["target"] = "no_such_mesh_7f3a.obj";
+  expectError(j.dump(), {"schedule[1].target", "no_such_mesh_7f3a.obj"});
+}
+
+TEST_F(SceneJson, MalformedJsonNamesLine) {
+  std::string text = "{\n  \"name\": \"t\",\n  \"duration\": 4.0,,\n}\n";
+  std::string msg = errorOf(text);
+  EXPECT_NE(msg.find("scenes/x.json:3:"), std::string::npos) << msg;
+}
+
+TEST_F(SceneJson, LoadSceneNamesTheFile) {
+  fs::path dir = fs::temp_directory_path() / ("flowform_scene_test_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::string path = (dir / "broken.json").string();
+  json j = baseScene();
+  j["fluid"][0]["dimz"] = 3;
+  std::ofstream(path) << j.dump(2);
+  try {
+    ff::loadScene(path);
+    ADD_FAILURE() << "no error";
+  } catch (const ff::Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find(path + ": fluid[0].dimz: unknown key"), std::string::npos) << msg;
+  }
+
+  // Mesh paths resolve relative to the scene file's folder first.
+  unsetenv("FLOWFORM_MESH_PATH");
+  std::ofstream(dir / "tiny.obj")
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  j = baseScene();
+  j.erase("name");
+  j["schedule"][1]["target"] = "tiny.obj";
+  std::string good = (dir / "tiny_scene.json").string();
+  std::ofstream(good) << j.dump(2);
+  ff::SceneDesc s = ff::loadScene(good);
+  EXPECT_EQ(s.schedule[1].target.mesh, "tiny.obj");
+  EXPECT_TRUE(fs::equivalent(s.schedule[1].target.resolved_path, dir / "tiny.obj"));
+  EXPECT_EQ(s.name, "tiny_scene");  // the file's stem when the scene has no name
+  fs::remove_all(dir);
+}
+
+TEST_F(SceneJson, LoadSceneMissingFile) {
+  try {
+    ff::loadScene("/nonexistent/flowform/none.json");
+    ADD_FAILURE() << "no error";
+  } catch (const ff::Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("/nonexistent/flowform/none.json: cannot open scene file"), std::string::npos) << msg;
+  }
+}
+
+TEST(Params, PresetsAndRestSpacing) {
+  ff::Params paper = ff::presetParams("paper");
+  EXPECT_FLOAT_EQ(paper.fluid.particle_mass, 0.0002f);
+  EXPECT_FLOAT_EQ(paper.fluid.smoothing_radius, 0.012f);
+  EXPECT_FLOAT_EQ(paper.fluid.rest_density, 800.0f);
+  EXPECT_FLOAT_EQ(paper.fluid.gas_constant, 0.5f);
+  EXPECT_FLOAT_EQ(paper.fluid.time_step, 0.004f);
+  EXPECT_FLOAT_EQ(paper.control.radius, 0.03f);
+  EXPECT_FLOAT_EQ(paper.shape.stiffness, 0.3f);
+  EXPECT_NEAR(paper.fluid.restSpacing(), 0.0062996f, 1e-6f);
+  ff::Params def = ff::presetParams("default");
+  EXPECT_FLOAT_EQ(def.fluid.gas_constant, paper.fluid.gas_constant);
+  EXPECT_NO_THROW(ff::validateParams(paper, "paper"));
+  EXPECT_NO_THROW(ff::validateParams(def, "default"));
+}
+
+TEST(Params, UnknownPresetListsKnownOnes) {
+  try {
+    ff::presetParams("turbo");
+    ADD_FAILURE() << "no error";
+  } catch (const ff::Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("turbo"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("paper"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("default"), std::string::npos) << msg;
+  }
+}
+
+TEST(Params, ValidateRejectsNanAndRanges) {
+  auto message = [](const ff::Params& p) {
+    try {
+      ff::validateParams(p, "WHERE");
+    } catch (const ff::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  ff::Params p;
+  p.fluid.gas_constant = std::nanf("");
+  EXPECT_EQ(message(p), "WHERE: params.fluid.gas_constant: must be >= 0 (got nan)");
+  p = ff::Params{};
+  p.fluid.viscosity = INFINITY;
+  EXPECT_NE(message(p).find("params.fluid.viscosity: must be finite (got inf)"), std::string::npos)
+      << message(p);
+  p = ff::Params{};
+  p.fluid.gravity[2] = -INFINITY;
+  EXPECT_NE(message(p).find("params.fluid.gravity[2]"), std::string::npos) << message(p);
+  p = ff::Params{};
+  p.fluid.particle_mass = 0.0f;
+  EXPECT_NE(message(p).find("params.fluid.particle_mass: must be > 0"), std::string::npos) << message(p);
+  p = ff::Params{};
+  p.fluid.max_step_fraction = 1.5f;
+  EXPECT_NE(message(p).find("params.fluid.max_step_fraction"), std::string::npos) << message(p);
+  p = ff::Params{};
+  p.shape.stiffness = -0.1f;
+  EXPECT_NE(message(p).find("params.shape_matching.stiffness"), std::string::npos) << message(p);
+  p = ff::Params{};
+  p.shape.cluster_half_width = 0;
+  EXPECT_NE(message(p).find("params.shape_matching.cluster_half_width: must be >= 1"), std::string::npos)
+      << message(p);
+  p = ff::Params{};
+  p.control.radius = -1.0f;
+  EXPECT_NE(message(p).find("params.control.radius"), std::string::npos) << message(p);
+}

@@ -256,27 +256,46 @@ TEST_F(MeshIoTest, ZeroVolumeMeshIsDegenerate) {
 }
 
 TEST_F(MeshIoTest, HeaderDeclaringHugeCountsIsRejectedQuickly) {
-  // assimp would loop over a billion faces here.
-  expectLoadError(write("huge.off", "OFF\n4 1000000000 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n"), "header");
+  // assimp would loop over a billion faces, or try to allocate 48 GB.
+  expectLoadError(write("huge.off", "OFF\n4 1000000000 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n"),
+                  "declares");
   expectLoadError(write("huge.ply",
                         "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
                         "property float y\nproperty float z\nend_header\n"),
-                  "header");
+                  "declares");
+}
+
+TEST_F(MeshIoTest, GarbledPlyHeadersAreRejected) {
+  // Each of these made assimp 5.2 hang or crash (found by fuzzing).
+  const std::string ply = cubePly();
+  const std::string cut = ply.substr(0, ply.find("end_header") + 4);  // header cut short
+  std::string glued = ply;                                            // data glued to end_header
+  glued.erase(glued.find("end_header") + 10, 1);
+  std::string typo = ply;
+  typo.replace(typo.find("property float z"), 16, "property-float z");
+  expectLoadError(write("cut.ply", cut), "end_header");
+  expectLoadError(write("glued.ply", glued), "garbled PLY header");
+  expectLoadError(write("typo.ply", typo), "garbled PLY header");
 }
 
 TEST_F(MeshIoTest, TruncatedAndMutatedMeshesNeverCrash) {
-  // Every prefix length class and random byte flips of valid files: either a
-  // mesh or an ff::Error naming the file, never a crash or another exception.
+  // Truncations, byte flips and inserted digits or separators in valid
+  // files: either a mesh or an ff::Error naming the file, never a crash, a
+  // hang or another exception. (Before the header checks, such mutants made
+  // assimp hang, abort or crash.)
   std::mt19937 random(777);
   const std::string sources[] = {cubeObj(), cubePly(), cubeOff(), tetraStl(1, 1, 1)};
   const char* exts[] = {"obj", "ply", "off", "stl"};
+  const std::string inserts = "0123456789-. \n";
   for (int s = 0; s < 4; ++s) {
-    for (int trial = 0; trial < 25; ++trial) {
+    for (int trial = 0; trial < 150; ++trial) {
       std::string bytes = sources[s];
-      if (trial % 2) {
+      if (trial % 3 == 0) {
         bytes.resize(random() % bytes.size());
+      } else if (trial % 3 == 1) {
+        for (int f = 0; f < 3; ++f) bytes[random() % bytes.size()] = char(random() & 0xff);
       } else {
-        for (int f = 0; f < 4; ++f) bytes[random() % bytes.size()] = char(random() & 0xff);
+        for (int f = 0; f < 2; ++f) bytes[random() % bytes.size()] = inserts[random() % inserts.size()];
       }
       const std::string path = write(std::string("mutant.") + exts[s], bytes);
       try {

@@ -3,9 +3,25 @@
 #ifndef FF_CONTROL_H
 #define FF_CONTROL_H
 #include "ff_compat.h"
+#include "ff_sph.h"
 
 /* Eq. 5: density scale of a control particle from rho_hat = sum_e V_e W. */
 FF_FN float ff_control_scale(float rho_hat) { return 1.0f - FF_FMIN(1.0f, rho_hat); }
+
+/* Share of a fluid particle's weight that the control carries. wsum * v_c is
+ * the part of the particle's neighbourhood filled by control particles of rest
+ * volume v_c (wsum = sum_i W(|p_i - x_e|)): 1 deep inside the shape, 1/2 on its
+ * surface. full_at is that value one control-particle spacing outside a flat
+ * surface (ff_control_full_coverage): the control carries all the weight of
+ * fluid inside the shape and up to one spacing outside it (the voxelisation's
+ * own uncertainty), fading to none at the edge of its reach. */
+FF_FN float ff_control_held(float wsum, float v_c, float full_at) { return FF_FMIN(1.0f, wsum * v_c / full_at); }
+
+/* The coverage one control-particle spacing (cbrt(v_c)) outside a flat surface
+ * of the shape, for control radius r with poly6 coefficient coef. */
+FF_FN float ff_control_full_coverage(float v_c, float r, float coef) {
+  return ff_poly6_wall_fraction(FF_CBRT(v_c), r, coef);
+}
 
 /* Eq. 4, one control particle's term: w_a s_i (p_i - x_e)/|p_i - x_e| W.
  * d = p_i - x_e, r = |d|. */

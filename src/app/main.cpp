@@ -8,6 +8,7 @@
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they happen, also in logs
   CLI::App app{"flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};
   app.require_subcommand(0, 1);
   auto run = ff::app::addRunCommand(app);

@@ -28,6 +28,7 @@ struct ControlSet {
   std::vector<float> x0, y0, z0;  // rest positions (reference particles, target frame)
   Clusters clusters;
   float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
+  float particle_volume = 0;  // rest volume of one control particle (the voxel volume)
   size_t size() const { return x.size(); }
 };
 

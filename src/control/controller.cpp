@@ -67,7 +67,9 @@ void Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   }
   const bool per_density = cp_.units == ControlForceUnits::ForceDensity;
   const float unit_scale = cp_.units == ControlForceUnits::Force ? 1.0f / f.mass : 1.0f;
-  const float wa = cp_.attraction, wv = cp_.velocity;
+  const float wa = cp_.attraction, wv = cp_.velocity, gc = cp_.gravity_compensation;
+  const float cp_volume = set_.particle_volume;
+  const float full_at = ff_control_full_coverage(cp_volume, r, coef);
 #pragma omp parallel for schedule(static)
   for (long e = 0; e < long(f.n); ++e) {
     const float xe = f.x[e], ye = f.y[e], ze = f.z[e];
@@ -88,6 +90,9 @@ void Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     const float scale = per_density ? 1.0f / (f.rho ? f.rho[e] : f.rest_density) : unit_scale;
     const float k = wv * wsum * scale;
     fa = fa * (wa * scale);
+    // Gravity carried by the control (all of it inside the shape).
+    const float held = gc * ff_control_held(wsum, cp_volume, full_at);
+    fa = fa - FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]) * held;
     ax[e] += fa.x + ff_velocity_force_implicit(wv * vsx * scale, k, f.vx[e], dt);
     ay[e] += fa.y + ff_velocity_force_implicit(wv * vsy * scale, k, f.vy[e], dt);
     az[e] += fa.z + ff_velocity_force_implicit(wv * vsz * scale, k, f.vz[e], dt);
@@ -112,11 +117,20 @@ void Controller::shapeMatchStep() {
   if (n == 0) return;
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);
   clusterGoals(set_, q_, cx_, cy_, cz_, gx_, gy_, gz_);
-  const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback;
+  clusterVelocities(set_, cvx_, cvy_, cvz_);
+  const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback, damp = sm_.damping;
+  const Clusters& cl = set_.clusters;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
+    ff_float3 vc = FF_F3(0.0f, 0.0f, 0.0f);
+    for (uint32_t k = cl.of_start[i]; k < cl.of_start[i + 1]; ++k) {
+      const uint32_t c = cl.of[k];
+      vc += FF_F3(cvx_[c], cvy_[c], cvz_[c]);
+    }
+    vc = vc * (1.0f / float(cl.of_start[i + 1] - cl.of_start[i]));
+    v = ff_feedback_velocity(v, vc, damp);  // the same relaxation, towards the clusters' motion
     v = ff_feedback_velocity(v, FF_F3(fields_.ux[i], fields_.uy[i], fields_.uz[i]), fb);
     v += ff_shape_match_dv(FF_F3(gx_[i], gy_[i], gz_[i]), x, alpha, h);
     ff_float3 nx = x + v * h;

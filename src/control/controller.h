@@ -23,6 +23,7 @@ struct FluidView {
   const float* rho = nullptr;  // per-particle density; only read with ControlForceUnits::ForceDensity
   float rest_density = 1.0f;   // used instead of rho when rho is null
   float mass = 1.0f;           // particle mass; only read with ControlForceUnits::Force
+  float gravity[3] = {0.0f, 0.0f, 0.0f};  // the host solver's gravity (for gravity compensation)
 };
 
 class Controller {
@@ -69,7 +70,7 @@ class Controller {
   UniformGrid cp_grid_, fluid_grid_;
   std::vector<float> sx_, sy_, sz_, ss_, svx_, svy_, svz_;  // control particles in cp_grid_ order
   std::vector<ff_quat> q_;
-  std::vector<float> cx_, cy_, cz_, gx_, gy_, gz_;
+  std::vector<float> cx_, cy_, cz_, gx_, gy_, gz_, cvx_, cvy_, cvz_;
 };
 
 }  // namespace ff

@@ -8,7 +8,7 @@
 namespace ff {
 
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
-                                 const ShapeMatchParams& sm) {
+                                 const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi) {
   const size_t n = target.reference.size();
   if (n == 0) throw Error("target '" + target.label + "' has no reference particles");
   Vec3 tlo = target.reference[0], thi = target.reference[0];
@@ -35,7 +35,26 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     vj[p] = int(std::floor((r.y() - g.origin.y()) / g.voxel));
     vk[p] = int(std::floor((r.z() - g.origin.z()) / g.voxel));
   }
+  set.particle_volume = g.voxel * g.voxel * g.voxel;
   set.rest_cx = float(sx / double(n)), set.rest_cy = float(sy / double(n)), set.rest_cz = float(sz / double(n));
+
+  // Fit the rigid goal shape (rest shape around the placed centre of mass) into the container.
+  double px = 0, py = 0, pz = 0;
+  for (size_t p = 0; p < n; ++p) px += set.x[p], py += set.y[p], pz += set.z[p];
+  const Vec3 com(float(px / double(n)), float(py / double(n)), float(pz / double(n)));
+  const Vec3 rest_c(set.rest_cx, set.rest_cy, set.rest_cz);
+  const float margin = 0.5f * g.voxel;
+  Vec3 shift(0, 0, 0);
+  for (int d = 0; d < 3; ++d) {
+    const float glo = com[d] + (tlo[d] - rest_c[d]) - margin, ghi = com[d] + (thi[d] - rest_c[d]) + margin;
+    if (ghi - glo >= box_hi[d] - box_lo[d])
+      shift[d] = 0.5f * (box_lo[d] + box_hi[d]) - 0.5f * (glo + ghi);
+    else if (glo < box_lo[d])
+      shift[d] = box_lo[d] - glo;
+    else if (ghi > box_hi[d])
+      shift[d] = box_hi[d] - ghi;
+  }
+  for (size_t p = 0; p < n; ++p) set.x[p] += shift.x(), set.y[p] += shift.y(), set.z[p] += shift.z();
   buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width);
   return set;
 }

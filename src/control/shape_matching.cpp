@@ -31,6 +31,23 @@ void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<f
   }
 }
 
+void clusterVelocities(const ControlSet& set, std::vector<float>& vx, std::vector<float>& vy,
+                       std::vector<float>& vz) {
+  const Clusters& cl = set.clusters;
+  const long nc = long(cl.count());
+  vx.resize(size_t(nc)), vy.resize(size_t(nc)), vz.resize(size_t(nc));
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < nc; ++c) {
+    float sx = 0, sy = 0, sz = 0;
+    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
+      const uint32_t p = cl.members[k];
+      sx += set.vx[p], sy += set.vy[p], sz += set.vz[p];
+    }
+    const float inv = 1.0f / float(cl.start[c + 1] - cl.start[c]);
+    vx[c] = sx * inv, vy[c] = sy * inv, vz[c] = sz * inv;
+  }
+}
+
 void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const std::vector<float>& cx,
                   const std::vector<float>& cy, const std::vector<float>& cz, std::vector<float>& gx,
                   std::vector<float>& gy, std::vector<float>& gz) {

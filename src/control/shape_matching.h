@@ -14,6 +14,10 @@ namespace ff {
 void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx, std::vector<float>& cy,
                    std::vector<float>& cz, int iterations);
 
+// Mean velocity of every cluster's members.
+void clusterVelocities(const ControlSet& set, std::vector<float>& vx, std::vector<float>& vy,
+                       std::vector<float>& vz);
+
 // Goal of every control particle: the mean over its clusters of R_c (x0 - c0_c) + c_c (eq. 8).
 void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const std::vector<float>& cx,
                   const std::vector<float>& cy, const std::vector<float>& cz, std::vector<float>& gx,

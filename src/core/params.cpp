@@ -77,6 +77,7 @@ void validateParams(const Params& p, const std::string& where) {
   nonNegative(where, "params.control.attraction", c.attraction);
   nonNegative(where, "params.control.velocity", c.velocity);
   unitInterval(where, "params.control.feedback", c.feedback);
+  unitInterval(where, "params.control.gravity_compensation", c.gravity_compensation);
   if (c.units != ControlForceUnits::Acceleration && c.units != ControlForceUnits::ForceDensity &&
       c.units != ControlForceUnits::Force)
     throw Error((where.empty() ? std::string() : where + ": ") +
@@ -88,6 +89,7 @@ void validateParams(const Params& p, const std::string& where) {
   atLeastOne(where, "params.shape_matching.cluster_stride", s.cluster_stride);
   atLeastOne(where, "params.shape_matching.cluster_half_width", s.cluster_half_width);
   atLeastOne(where, "params.shape_matching.rotation_iterations", s.rotation_iterations);
+  unitInterval(where, "params.shape_matching.damping", s.damping);
 }
 
 }  // namespace ff

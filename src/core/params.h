@@ -36,6 +36,10 @@ struct ControlParams {
   float attraction = 0.00008f;   // w_a
   float velocity = 0.00005f;     // w_v
   float feedback = 0.02f;        // fluid feedback coefficient
+  // Share of gravity that the control particles carry for the fluid they hold
+  // (after Thuerey et al. 2006, who scale gravity down where control acts).
+  // 0 = none (the paper's text), 1 = full inside the target shape.
+  float gravity_compensation = 1.0f;
   ControlForceUnits units = ControlForceUnits::Acceleration;
 };
 
@@ -48,6 +52,11 @@ struct ShapeMatchParams {
   int cluster_stride = 2;
   int cluster_half_width = 2;
   int rotation_iterations = 8;  // warm-started quaternion iterations per step
+  // Damping of the control particles' deformation: each shape-matching step
+  // moves a particle's velocity this fraction towards the mean velocity of its
+  // clusters. Rigid motion is untouched. Plain shape matching with stiffness
+  // < 1 is an undamped oscillator; this makes it converge.
+  float damping = 0.1f;
 };
 
 struct Params {

@@ -58,6 +58,7 @@ FluidView CpuBackend::view() const {
   v.rho = fluid_.rho.data();
   v.rest_density = params_.fluid.rest_density;
   v.mass = params_.fluid.particle_mass;
+  for (int d = 0; d < 3; ++d) v.gravity[d] = params_.fluid.gravity[d];
   return v;
 }
 

@@ -152,12 +152,13 @@ void readParams(const Reader& r, const json& j, Params& p) {
   }
   if (j.contains("control")) {
     const std::string path = "params.control";
-    const json& c = r.object(j["control"], path, {"radius", "attraction", "velocity", "feedback", "units"});
+    const json& c = r.object(j["control"], path, {"radius", "attraction", "velocity", "feedback", "gravity_compensation", "units"});
     ControlParams& o = p.control;
     r.opt(c, path, "radius", o.radius);
     r.opt(c, path, "attraction", o.attraction);
     r.opt(c, path, "velocity", o.velocity);
     r.opt(c, path, "feedback", o.feedback);
+    r.opt(c, path, "gravity_compensation", o.gravity_compensation);
     if (c.contains("units")) {
       std::string u = r.string(c["units"], child(path, "units"));
       if (u == "acceleration")
@@ -175,13 +176,14 @@ void readParams(const Reader& r, const json& j, Params& p) {
     const std::string path = "params.shape_matching";
     const json& s =
         r.object(j["shape_matching"], path,
-                 {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations"});
+                 {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations", "damping"});
     ShapeMatchParams& o = p.shape;
     r.opt(s, path, "stiffness", o.stiffness);
     r.opt(s, path, "time_step", o.time_step);
     r.opt(s, path, "cluster_stride", o.cluster_stride);
     r.opt(s, path, "cluster_half_width", o.cluster_half_width);
     r.opt(s, path, "rotation_iterations", o.rotation_iterations);
+    r.opt(s, path, "damping", o.damping);
   }
 }
 

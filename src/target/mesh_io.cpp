@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "target/mesh_file_checks.h"
 
 namespace ff {
 namespace {
@@ -23,48 +24,34 @@ namespace {
   throw Error(path + ": " + what);
 }
 
-std::string readHead(const std::string& path, size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(max_bytes, '\0');
-  in.read(&head[0], std::streamsize(max_bytes));
-  head.resize(size_t(in.gcount()));
-  return head;
-}
-
-// assimp trusts the element counts of PLY and OFF headers: a garbled header
-// that claims billions of elements makes it allocate (bad_alloc) or loop for
-// minutes. Every element takes at least one byte, so a count above the file
-// size is rejected here, before assimp sees the file.
-void checkDeclaredCounts(const std::string& path, uintmax_t file_size) {
-  const std::string head = readHead(path, 65536);
-  std::istringstream lines(head);
-  std::string line;
-  uintmax_t declared = 0;
-  if (head.compare(0, 3, "ply") == 0 || head.compare(0, 3, "PLY") == 0) {
-    while (std::getline(lines, line) && line.compare(0, 10, "end_header") != 0) {
-      std::istringstream words(line);
-      std::string keyword, name;
-      long long count = 0;
-      if (words >> keyword >> name >> count && keyword == "element") {
-        if (count < 0) fail(path, "garbled PLY header: element '" + name + "' has a negative count");
-        declared += uintmax_t(count);
+// Checks the freshly read meshes and recomputes their primitive-type flags
+// from the faces: a garbled file can leave flags that do not match the faces,
+// and assimp's (Debian: assertion-enabled) Triangulate step aborts the whole
+// program on such a mismatch. Returns a problem description, or "".
+std::string checkRawScene(const aiScene* scene) {
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    aiMesh* mesh = scene->mMeshes[m];
+    if (!mesh) return "a mesh is missing";
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || !face.mIndices)
+        return "face " + std::to_string(f + 1) + " has no vertices";
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          return "face " + std::to_string(f + 1) + " refers to vertex " +
+                 std::to_string(face.mIndices[k] + 1) + " but there are only " +
+                 std::to_string(mesh->mNumVertices);
+        }
       }
+      types |= face.mNumIndices == 1   ? aiPrimitiveType_POINT
+               : face.mNumIndices == 2 ? aiPrimitiveType_LINE
+               : face.mNumIndices == 3 ? aiPrimitiveType_TRIANGLE
+                                       : aiPrimitiveType_POLYGON;
     }
-  } else {
-    std::istringstream words(head);
-    std::string token;
-    while (words >> token && token[0] == '#') std::getline(words, line);  // comments
-    if (token.size() < 3 || token.compare(token.size() - 3, 3, "OFF") != 0) return;
-    if (token == "nOFF") words >> token;  // the dimension
-    long long nv = 0, nf = 0;
-    if (!(words >> nv >> nf)) return;  // not the text layout this check knows: leave it to assimp
-    if (nv < 0 || nf < 0) fail(path, "garbled OFF header: negative vertex or face count");
-    declared = uintmax_t(nv) + uintmax_t(nf);
+    mesh->mPrimitiveTypes = types;
   }
-  if (declared > file_size) {
-    fail(path, "garbled or truncated file: its header declares " + std::to_string(declared) +
-                   " elements but the file holds only " + std::to_string(file_size) + " bytes");
-  }
+  return "";
 }
 
 void collectNode(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, std::vector<bool>& used,
@@ -148,18 +135,25 @@ TriangleMesh loadMesh(const std::string& path) {
   const uintmax_t size = fs::file_size(path, ec);
   if (ec) fail(path, "cannot read the file: " + ec.message());
   if (size == 0) fail(path, "the file is empty");
-  checkDeclaredCounts(path, size);
+  checkMeshFileHeader(path, size);
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
+  std::string problem;
   try {
-    // ValidateDataStructure runs first and rejects out-of-range indices before
-    // the other steps touch them.
-    scene = importer.ReadFile(
-        path, aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    // Two stages: read and validate (out-of-range indices are rejected before
+    // anything else touches them), repair what the post-processing steps
+    // trust, then triangulate and join identical vertices.
+    scene = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+    if (scene) {
+      problem = checkRawScene(scene);
+      if (problem.empty())
+        scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
+    }
   } catch (const std::exception& e) {
     fail(path, std::string("cannot read the mesh (assimp: ") + e.what() + ")");
   }
+  if (!problem.empty()) fail(path, "garbled file: " + problem);
   if (!scene) fail(path, std::string("cannot read the mesh (assimp: ") + importer.GetErrorString() + ")");
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
     fail(path, "cannot read the mesh (assimp: incomplete scene)");

@@ -1,0 +1,126 @@
+// The engine API: target changes at any step, the schedule, the cache, the
+// region, and NaN detection naming step and phase.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "core/error.h"
+#include "core/simulation.h"
+#include "cpu/backend_cpu.h"
+
+namespace {
+
+ff::SceneDesc smallScene() {
+  ff::SceneDesc s;
+  s.source = "test";
+  s.container.min = ff::Vec3(0, 0, 0);
+  s.container.max = ff::Vec3(0.2f, 0.2f, 0.2f);
+  ff::FluidBlockDesc b;
+  b.origin = ff::Vec3(0.06f, 0.0f, 0.06f);
+  b.dims[0] = 12, b.dims[1] = 12, b.dims[2] = 12;
+  s.fluid.push_back(b);
+  return s;
+}
+
+ff::TargetSpec shape(ff::TargetKind k, int count) {
+  ff::TargetSpec t;
+  t.kind = k;
+  t.control_count = count;
+  return t;
+}
+
+TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {
+  ff::SceneDesc s = smallScene();
+  s.schedule.push_back({0.0, shape(ff::TargetKind::Sphere, 400)});
+  s.schedule.push_back({0.02, shape(ff::TargetKind::Box, 400)});
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+  ASSERT_NE(sim.target(), nullptr);
+  EXPECT_EQ(sim.target()->label, "sphere");
+  for (int i = 0; i < 5; ++i) sim.step();  // t = 0.02
+  sim.step();
+  EXPECT_EQ(sim.target()->label, "box");
+  EXPECT_EQ(sim.targetCacheSize(), 2u);
+}
+
+TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
+  ff::SceneDesc s = smallScene();
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+  EXPECT_EQ(sim.target(), nullptr);
+  for (int i = 0; i < 3; ++i) sim.step();
+  sim.setTarget(shape(ff::TargetKind::Torus, 500));
+  const ff::TargetShape* torus = sim.target();
+  ASSERT_NE(torus, nullptr);
+  ff::ControlSet c;
+  ff::ControlFields f;
+  sim.backend().readControl(c, f);
+  EXPECT_EQ(c.size(), torus->reference.size());
+  EXPECT_NEAR(double(c.size()), 500.0, 15.0);
+  for (int i = 0; i < 3; ++i) sim.step();
+  sim.setTarget(shape(ff::TargetKind::Capsule, 500));
+  sim.setTarget(shape(ff::TargetKind::Torus, 500));
+  EXPECT_EQ(sim.target(), torus);  // the cached voxelisation, not a new one
+  EXPECT_EQ(sim.targetCacheSize(), 2u);
+  sim.step();
+  EXPECT_TRUE(std::isfinite(sim.metrics().iou));
+}
+
+TEST(SimulationApi, ControlParticlesFillTheRegionBoundingBox) {
+  ff::SceneDesc s = smallScene();
+  s.region.kind = ff::RegionDesc::Kind::Box;
+  s.region.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  s.region.max = ff::Vec3(0.2f, 0.04f, 0.2f);  // the bottom layers of the block only
+  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+  ff::ControlSet c;
+  ff::ControlFields f;
+  sim.backend().readControl(c, f);
+  ff::FluidState fl;
+  sim.backend().readFluid(fl);
+  long in_region = 0;
+  float ymax = 0;
+  for (size_t i = 0; i < fl.size(); ++i)
+    if (fl.y[i] <= 0.04f) ++in_region, ymax = std::max(ymax, fl.y[i]);
+  EXPECT_EQ(sim.controlledCount(), in_region);
+  for (size_t i = 0; i < c.size(); ++i) EXPECT_LE(c.y[i], ymax + 1e-5f);
+}
+
+TEST(SimulationApi, EmptyRegionIsAClearError) {
+  ff::SceneDesc s = smallScene();
+  s.region.kind = ff::RegionDesc::Kind::Sphere;
+  s.region.center = ff::Vec3(0.19f, 0.19f, 0.19f);
+  s.region.radius = 0.005f;
+  s.schedule.push_back({0.0, shape(ff::TargetKind::Sphere, 300)});
+  try {
+    ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+    FAIL() << "expected an error";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("region"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SimulationApi, NanStopsTheRunNamingStepAndPhase) {
+  ff::SceneDesc s = smallScene();
+  auto backend = std::make_unique<ff::CpuBackend>();
+  ff::CpuBackend* cpu = backend.get();
+  ff::Simulation sim(s, std::move(backend));
+  sim.step();
+  sim.step();
+  cpu->fluid().s.x[7] = std::nanf("");
+  try {
+    sim.step();
+    FAIL() << "expected an error";
+  } catch (const ff::Error& e) {
+    std::string m = e.what();
+    EXPECT_NE(m.find("step 2"), std::string::npos) << m;
+    EXPECT_NE(m.find("'density'"), std::string::npos) << m;
+  }
+}
+
+TEST(SimulationApi, NanParametersAreRejected) {
+  ff::SceneDesc s = smallScene();
+  s.params.fluid.gas_constant = std::nanf("");
+  EXPECT_THROW(ff::Simulation(s, std::make_unique<ff::CpuBackend>()), ff::Error);
+}
+
+}  // namespace

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 
 #include "core/simulation.h"
+#include "ff_sph.h"
 #include "cpu/backend_cpu.h"
 
 namespace {
@@ -52,9 +54,30 @@ TEST(FluidPhysics, NoDensityDeficiencyAtTheWalls) {
 }
 
 TEST(FluidPhysics, RestingColumnIsHydrostatic) {
-  // A column settles under gravity; in equilibrium the pressure at height y
-  // carries the weight of the fluid above it: p(y) = g M(>y) / A.
+  // In equilibrium the pressure at height y carries the weight of the fluid
+  // above it: rho g (H - y) = g M(>y) / A.
+  //
+  // Discretisation: Mueller et al.'s symmetric force -sum_j m_j (p_i + p_j) /
+  // (2 rho_j) grad W equals -(1/2) grad p in the continuum (the p_i half sums
+  // to ~0), and on a neighbourhood of h = 1.9 spacings the gradient is further
+  // scaled by the kernel-gradient moment M_yy = sum_j V_j (y_j - y_i) dW_ij/dy_i
+  // (1 in the continuum). So the solver's equilibrium is
+  // p(y) = 2 g M(>y) / (A M_yy): we measure M_yy on the settled particles,
+  // independently of the pressure values, and check that.
+  //
+  // Stiffness: the paper's k = 0.5 gives a sound speed of sqrt(k) = 0.7 m/s,
+  // and under g = 9.81 a column compresses by rho0 g H / k: 300% for 0.15 m,
+  // far outside the regime where SPH discretises a liquid (we measured a
+  // 0.19 m column crushed to 0.05 m). The law holds for any g, so the test
+  // keeps the paper's k, h and mass and uses g = 0.3 m/s^2, where the
+  // 0.126 m column compresses by rho0 g H / k = 7.6% at the bottom.
+  // Tolerance: 10% of the bottom pressure. The pressure is read as a slab
+  // average of SPH values that are smoothed over h = 0.012 m, about a tenth
+  // of the column, and the fluid density varies by 7.6% over the height.
+  // Statics do not depend on viscosity, so the test settles with a larger one.
   ff::Params p;
+  p.fluid.viscosity = 2.0f;
+  p.fluid.gravity[1] = -0.3f;
   const float sp = p.fluid.restSpacing();
   const int nx = 8, ny = 20, nz = 8;
   ff::SceneDesc s = boxScene(ff::Vec3(nx * sp, 0.3f, nz * sp), nx, ny, nz, ff::Vec3(0, 0, 0));
@@ -63,7 +86,7 @@ TEST(FluidPhysics, RestingColumnIsHydrostatic) {
   ff::CpuBackend* cpu = backend.get();
   ff::Simulation sim(s, std::move(backend));
   // Settle: step with extra velocity damping (statics only, not dynamics).
-  for (int i = 0; i < 1500; ++i) {
+  for (int i = 0; i < 600; ++i) {
     sim.step();
     auto& st = cpu->fluid().s;
     for (size_t k = 0; k < st.size(); ++k) st.vx[k] *= 0.97f, st.vy[k] *= 0.97f, st.vz[k] *= 0.97f;
@@ -71,16 +94,36 @@ TEST(FluidPhysics, RestingColumnIsHydrostatic) {
   cpu->buildGrid();
   cpu->computeDensity();
   const auto& f = cpu->fluid();
-  ASSERT_LT(sim.metrics().max_speed, 0.05);
-  const double g = 9.81, area = double(nx * sp) * double(nz * sp), m = p.fluid.particle_mass;
+  ASSERT_LT(sim.metrics().max_speed, 0.02);
+  const double g = -p.fluid.gravity[1], area = double(nx * sp) * double(nz * sp), m = p.fluid.particle_mass;
   float top = 0;
   for (float y : f.s.y) top = std::max(top, y);
   const float h = p.fluid.smoothing_radius;
-  const double p_bottom = g * m * double(f.size()) / area;
+  // Kernel-gradient moment over the bulk of the settled column.
+  const float coef = ff_spiky_grad_coef(h);
+  double myy = 0;
+  int nm = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    if (f.s.y[i] < 1.5f * h || f.s.y[i] > top - 1.5f * h) continue;
+    if (f.s.x[i] < h || f.s.x[i] > nx * sp - h || f.s.z[i] < h || f.s.z[i] > nz * sp - h) continue;
+    double sum = 0;
+    for (size_t j = 0; j < f.size(); ++j) {
+      const float dx = f.s.x[i] - f.s.x[j], dy = f.s.y[i] - f.s.y[j], dz = f.s.z[i] - f.s.z[j];
+      const float r = std::sqrt(dx * dx + dy * dy + dz * dz);
+      const float gfac = ff_spiky_grad_factor(r, h, coef);  // grad W = -gfac (x_i - x_j)
+      sum += double(m / f.rho[j]) * double(-dy) * double(-gfac * dy);
+    }
+    myy += sum, ++nm;
+  }
+  ASSERT_GT(nm, 0);
+  myy /= nm;
+  ASSERT_GT(myy, 0.5);
+  ASSERT_LT(myy, 1.5);
+  const double scale = 2.0 / myy;
+  const double p_bottom = scale * g * m * double(f.size()) / area;
   int checked = 0;
-  // Compare slab averages away from the free surface (kernel deficiency
-  // there) and away from the floor layer.
-  for (float y0 = h; y0 + 0.5f * h < top - 2.0f * h; y0 += 0.5f * h) {
+  // Slabs away from the free surface (kernel deficiency there) and the floor layer.
+  for (float y0 = h; y0 + 0.5f * h < top - 1.5f * h; y0 += 0.5f * h) {
     double psum = 0;
     int np = 0;
     long above = 0;
@@ -89,11 +132,11 @@ TEST(FluidPhysics, RestingColumnIsHydrostatic) {
       if (f.s.y[i] >= y0 + 0.25f * h) ++above;
     }
     if (np < 10) continue;
-    const double expect = g * m * double(above) / area;
-    EXPECT_NEAR(psum / np, expect, 0.12 * p_bottom) << "slab at y=" << y0;
+    const double expect = scale * g * m * double(above) / area;
+    EXPECT_NEAR(psum / np, expect, 0.10 * p_bottom) << "slab at y=" << y0;
     ++checked;
   }
-  EXPECT_GE(checked, 3);
+  EXPECT_GE(checked, 8);
 }
 
 TEST(FluidPhysics, NoParticleLeavesTheBoxInAViolentScene) {

@@ -2,6 +2,7 @@
 // region, and NaN detection naming step and phase.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -68,8 +69,8 @@ TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
 TEST(SimulationApi, ControlParticlesFillTheRegionBoundingBox) {
   ff::SceneDesc s = smallScene();
   s.region.kind = ff::RegionDesc::Kind::Box;
-  s.region.min = ff::Vec3(0.0f, 0.0f, 0.0f);
-  s.region.max = ff::Vec3(0.2f, 0.04f, 0.2f);  // the bottom layers of the block only
+  s.region.min = ff::Vec3(0.0f, 0.025f, 0.0f);
+  s.region.max = ff::Vec3(0.2f, 0.06f, 0.2f);  // a middle layer of the block only
   s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   ff::ControlSet c;
@@ -78,11 +79,43 @@ TEST(SimulationApi, ControlParticlesFillTheRegionBoundingBox) {
   ff::FluidState fl;
   sim.backend().readFluid(fl);
   long in_region = 0;
-  float ymax = 0;
-  for (size_t i = 0; i < fl.size(); ++i)
-    if (fl.y[i] <= 0.04f) ++in_region, ymax = std::max(ymax, fl.y[i]);
+  ff::Vec3 lo(1, 1, 1), hi(-1, -1, -1);
+  for (size_t i = 0; i < fl.size(); ++i) {
+    ff::Vec3 p(fl.x[i], fl.y[i], fl.z[i]);
+    if (p.y() < 0.025f || p.y() > 0.06f) continue;
+    ++in_region, lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
   EXPECT_EQ(sim.controlledCount(), in_region);
-  for (size_t i = 0; i < c.size(); ++i) EXPECT_LE(c.y[i], ymax + 1e-5f);
+  // The reference particles' bounding box maps onto the region's: the control
+  // particles span exactly the region's fluid bounding box.
+  ff::Vec3 clo(1, 1, 1), chi(-1, -1, -1);
+  for (size_t i = 0; i < c.size(); ++i) {
+    ff::Vec3 p(c.x[i], c.y[i], c.z[i]);
+    clo = clo.cwiseMin(p), chi = chi.cwiseMax(p);
+  }
+  EXPECT_LT((clo - lo).norm(), 1e-5f);
+  EXPECT_LT((chi - hi).norm(), 1e-5f);
+}
+
+TEST(SimulationApi, PlacementFitsTheFormingShapeIntoTheContainer) {
+  // A flat region on the floor: the box target of the same volume is taller
+  // than the region, so around the region's centre it would reach below the
+  // floor. Placement lifts it so that the rigid shape fits.
+  ff::SceneDesc s = smallScene();
+  s.region.kind = ff::RegionDesc::Kind::Box;
+  s.region.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  s.region.max = ff::Vec3(0.2f, 0.012f, 0.2f);
+  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+  ff::ControlSet c;
+  ff::ControlFields f;
+  sim.backend().readControl(c, f);
+  double cy = 0, rest_lo = 1e9;
+  for (size_t i = 0; i < c.size(); ++i) cy += c.y[i], rest_lo = std::min(rest_lo, double(c.y0[i]));
+  cy /= double(c.size());
+  const double lowest_goal = cy + (rest_lo - c.rest_cy);  // rest shape placed at the centre of mass
+  EXPECT_GE(lowest_goal, 0.0);
+  EXPECT_LT(lowest_goal, 0.01);  // lifted by what is needed, not more (half a voxel of margin)
 }
 
 TEST(SimulationApi, EmptyRegionIsAClearError) {
@@ -106,14 +139,14 @@ TEST(SimulationApi, NanStopsTheRunNamingStepAndPhase) {
   ff::Simulation sim(s, std::move(backend));
   sim.step();
   sim.step();
-  cpu->fluid().s.x[7] = std::nanf("");
+  cpu->fluid().s.vx[7] = std::nanf("");  // the viscosity force is the first to read it
   try {
     sim.step();
     FAIL() << "expected an error";
   } catch (const ff::Error& e) {
     std::string m = e.what();
     EXPECT_NE(m.find("step 2"), std::string::npos) << m;
-    EXPECT_NE(m.find("'density'"), std::string::npos) << m;
+    EXPECT_NE(m.find("'forces'"), std::string::npos) << m;
   }
 }
 

@@ -265,7 +265,7 @@ TEST_F(MeshIoTest, HeaderDeclaringHugeCountsIsRejectedQuickly) {
                   "declares");
 }
 
-TEST_F(MeshIoTest, GarbledPlyHeadersAreRejected) {
+TEST_F(MeshIoTest, GarbledPlyFilesAreRejected) {
   // Each of these made assimp 5.2 hang or crash (found by fuzzing).
   const std::string ply = cubePly();
   const std::string cut = ply.substr(0, ply.find("end_header") + 4);  // header cut short
@@ -273,9 +273,33 @@ TEST_F(MeshIoTest, GarbledPlyHeadersAreRejected) {
   glued.erase(glued.find("end_header") + 10, 1);
   std::string typo = ply;
   typo.replace(typo.find("property float z"), 16, "property-float z");
+  std::string long_list = ply;  // a face claiming a billion corners
+  long_list.replace(long_list.rfind("\n4 ") + 1, 1, "999999994");
+  const std::string short_data = ply.substr(0, ply.rfind("\n4 ") + 1);  // the last face missing
   expectLoadError(write("cut.ply", cut), "end_header");
   expectLoadError(write("glued.ply", glued), "garbled PLY header");
   expectLoadError(write("typo.ply", typo), "garbled PLY header");
+  expectLoadError(write("long_list.ply", long_list), "bad list length");
+  expectLoadError(write("short_data.ply", short_data), "ends early");
+}
+
+TEST_F(MeshIoTest, BinaryPlyCubeLoadsAndABadListLengthIsRejected) {
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : cubeVertices()) {
+    for (double c : p) {
+      const float f = float(c);
+      ply.append(reinterpret_cast<const char*>(&f), 4);  // the test machines are little-endian (x86-64)
+    }
+  }
+  for (const auto& q : kCubeQuads) {
+    ply.push_back(char(4));
+    for (int i : q) ply.append(reinterpret_cast<const char*>(&i), 4);
+  }
+  expectCube(ff::loadMesh(write("cube_binary.ply", ply)));
+  ply[ply.size() - 17] = char(200);  // the last face's corner count
+  expectLoadError(write("bad_binary.ply", ply), "bad list length");
 }
 
 TEST_F(MeshIoTest, TruncatedAndMutatedMeshesNeverCrash) {

@@ -67,9 +67,9 @@ FF_FN ff_quat ff_extract_rotation(ff_mat3 a, ff_quat q, int max_iter) {
     ff_float3 omega = num * (1.0f / den);
     float w = ff_length(omega);
     if (w < 1.0e-9f) break;
-    float half = 0.5f * w;
-    float s = FF_SIN(half) / w;
-    ff_quat dq = FF_Q(omega.x * s, omega.y * s, omega.z * s, FF_COS(half));
+    float half_angle = 0.5f * w; /* not `half`: a type name in OpenCL C */
+    float s = FF_SIN(half_angle) / w;
+    ff_quat dq = FF_Q(omega.x * s, omega.y * s, omega.z * s, FF_COS(half_angle));
     q = ff_quat_normalize(ff_quat_mul(dq, q));
   }
   return q;

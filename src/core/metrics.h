@@ -11,6 +11,8 @@ struct StepMetrics {
   double coverage = 0.0;        // mean of 1 - s_i over the control particles
   double max_speed = 0.0;       // m/s
   double density_error = 0.0;   // mean |rho - rho0| / rho0
+  double max_density = 0.0;     // kg/m^3 (drives the time-step control)
+  int substeps = 1;             // fluid substeps taken in this step
   double kinetic_energy = 0.0;  // J
   long control_count = 0;
 };

@@ -1,6 +1,7 @@
 // params.cpp - parameter presets and range checks.
 #include "core/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -10,6 +11,15 @@ namespace ff {
 
 float FluidParams::restSpacing() const {
   return std::cbrt(particle_mass / rest_density);
+}
+
+int FluidParams::substepsFor(double max_density, double max_speed) const {
+  const double rho = std::max(double(rest_density), max_density);
+  const double spacing = std::cbrt(double(particle_mass) / rho);
+  const double c = std::sqrt(std::max(0.0, double(gas_constant)));
+  const double dt_cfl = double(cfl) * spacing / (c + max_speed + 1e-12);
+  const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
+  return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }
 
 Params presetParams(const std::string& name) {
@@ -71,6 +81,10 @@ void validateParams(const Params& p, const std::string& where) {
   for (int i = 0; i < 3; ++i) check(where, kGravity[i], f.gravity[i], std::isfinite(f.gravity[i]), "finite");
   check(where, "params.fluid.max_step_fraction", f.max_step_fraction,
         f.max_step_fraction > 0 && f.max_step_fraction <= 1, "in (0, 1]");
+  check(where, "params.fluid.cfl", f.cfl, f.cfl > 0 && f.cfl <= 1, "in (0, 1]");
+  if (f.max_substeps < 1 || f.max_substeps > 1000)
+    throw Error((where.empty() ? std::string() : where + ": ") +
+                "params.fluid.max_substeps: must be in [1, 1000] (got " + std::to_string(f.max_substeps) + ")");
 
   const ControlParams& c = p.control;
   positive(where, "params.control.radius", c.radius);

@@ -23,12 +23,20 @@ struct FluidParams {
   float viscosity = 0.02f;          // mu
   float time_step = 0.004f;
   float gravity[3] = {0.0f, -9.81f, 0.0f};
-  // Safeguard that keeps the solver stable without tuning: no particle moves
-  // more than this fraction of h in one step (a CFL-style velocity limit).
+  // Stability without tuning. Each step of `time_step` is split into as many
+  // equal substeps as the CFL condition dt <= cfl * d / (c + v_max) asks for,
+  // where c = sqrt(k) is the sound speed of p = k (rho - rho0) and d the
+  // particle spacing at the highest density (up to max_substeps).
+  float cfl = 0.4f;
+  int max_substeps = 16;
+  // Last safeguard: no particle moves more than this fraction of h in one
+  // substep (a velocity limit).
   float max_step_fraction = 0.5f;
 
   float restVolume() const { return particle_mass / rest_density; }
   float restSpacing() const;  // cube root of the rest volume
+  // Substeps the CFL condition asks for, given the highest density and speed.
+  int substepsFor(double max_density, double max_speed) const;
 };
 
 struct ControlParams {

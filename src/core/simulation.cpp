@@ -57,21 +57,27 @@ void Simulation::applySchedule() {
 
 void Simulation::step() {
   applySchedule();
-  const float dt = scene_.params.fluid.time_step;
-  timed(Phase::Grid, [&] { backend_->buildGrid(); });
-  timed(Phase::Density, [&] { backend_->computeDensity(); });
-  timed(Phase::Forces, [&] { backend_->computeForces(); });
-  timed(Phase::ControlScale, [&] { backend_->computeControlScale(); });
-  timed(Phase::ControlForces, [&] { backend_->applyControlForces(dt); });
-  timed(Phase::Integrate, [&] { backend_->integrate(dt); });
-  timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
+  const FluidParams& fp = scene_.params.fluid;
+  // Substeps from the CFL condition, with last step's highest density and speed.
+  const int n = fp.substepsFor(metrics_.max_density, metrics_.max_speed);
+  const float dt = fp.time_step / float(n);
+  for (int k = 0; k < n; ++k) {
+    timed(Phase::Grid, [&] { backend_->buildGrid(); });
+    timed(Phase::Density, [&] { backend_->computeDensity(); });
+    timed(Phase::Forces, [&] { backend_->computeForces(); });
+    timed(Phase::ControlScale, [&] { backend_->computeControlScale(); });
+    timed(Phase::ControlForces, [&] { backend_->applyControlForces(dt); });
+    timed(Phase::Integrate, [&] { backend_->integrate(dt); });
+    timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
+  }
   ++step_;
-  time_ += double(dt);
+  time_ += double(fp.time_step);
   timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
   metrics_.step = step_;
   metrics_.time = time_;
+  metrics_.substeps = n;
   for (double v : {metrics_.iou, metrics_.coverage, metrics_.max_speed, metrics_.density_error,
-                   metrics_.kinetic_energy})
+                   metrics_.kinetic_energy, metrics_.max_density})
     if (!std::isfinite(v))
       throw Error("step " + std::to_string(step_) + ": a metric became NaN or Inf in phase 'metrics'");
 }

@@ -135,7 +135,8 @@ void readParams(const Reader& r, const json& j, Params& p) {
     const std::string path = "params.fluid";
     const json& f = r.object(j["fluid"], path,
                              {"particle_mass", "particle_radius", "smoothing_radius", "rest_density",
-                              "gas_constant", "viscosity", "time_step", "gravity", "max_step_fraction"});
+                              "gas_constant", "viscosity", "time_step", "gravity", "max_step_fraction",
+                              "cfl", "max_substeps"});
     FluidParams& o = p.fluid;
     r.opt(f, path, "particle_mass", o.particle_mass);
     r.opt(f, path, "particle_radius", o.particle_radius);
@@ -145,6 +146,8 @@ void readParams(const Reader& r, const json& j, Params& p) {
     r.opt(f, path, "viscosity", o.viscosity);
     r.opt(f, path, "time_step", o.time_step);
     r.opt(f, path, "max_step_fraction", o.max_step_fraction);
+    r.opt(f, path, "cfl", o.cfl);
+    r.opt(f, path, "max_substeps", o.max_substeps);
     if (f.contains("gravity")) {
       Vec3 g = r.vec3(f["gravity"], child(path, "gravity"));
       for (int i = 0; i < 3; ++i) o.gravity[i] = g[i];

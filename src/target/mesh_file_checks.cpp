@@ -1,8 +1,11 @@
-// mesh_file_checks.cpp - PLY header grammar and OFF/PLY declared counts.
+// mesh_file_checks.cpp - PLY structure (header grammar, data layout) and OFF
+// declared counts.
 #include "target/mesh_file_checks.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <vector>
 
@@ -17,12 +20,12 @@ constexpr size_t kHeadBytes = 65536;
   throw Error(path + ": " + what);
 }
 
-std::string readHead(const std::string& path) {
+std::string readBytes(const std::string& path, size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
-  std::string head(kHeadBytes, '\0');
-  in.read(&head[0], std::streamsize(kHeadBytes));
-  head.resize(size_t(in.gcount()));
-  return head;
+  std::string bytes(max_bytes, '\0');
+  in.read(&bytes[0], std::streamsize(max_bytes));
+  bytes.resize(size_t(in.gcount()));
+  return bytes;
 }
 
 std::vector<std::string> words(const std::string& line) {
@@ -36,75 +39,210 @@ bool isCount(const std::string& s) {
   return !s.empty() && s.size() <= 18 && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
-// Size in bytes of a PLY scalar type, 0 if it is not one.
-uintmax_t plyTypeSize(const std::string& t) {
-  static const std::pair<const char*, int> kTypes[] = {
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& type : kTypes) {
-    if (t == type.first) return uintmax_t(type.second);
+// ---- PLY ------------------------------------------------------------------------
+
+enum class PlyFormat { Ascii, BinaryLittle, BinaryBig };
+
+struct PlyType {
+  int size = 0;  // 0: not a PLY type
+  bool integer = false, is_signed = false;
+};
+
+PlyType plyType(const std::string& t) {
+  struct Named {
+    const char* name;
+    PlyType type;
+  };
+  static const Named kTypes[] = {
+      {"char", {1, true, true}},    {"uchar", {1, true, false}},   {"int8", {1, true, true}},
+      {"uint8", {1, true, false}},  {"short", {2, true, true}},    {"ushort", {2, true, false}},
+      {"int16", {2, true, true}},   {"uint16", {2, true, false}},  {"int", {4, true, true}},
+      {"uint", {4, true, false}},   {"int32", {4, true, true}},    {"uint32", {4, true, false}},
+      {"float", {4, false, true}},  {"float32", {4, false, true}}, {"double", {8, false, true}},
+      {"float64", {8, false, true}}};
+  for (const Named& n : kTypes) {
+    if (t == n.name) return n.type;
   }
-  return 0;
+  return {};
 }
 
-// Strict PLY header grammar; the data must hold at least one byte per ASCII
-// value, or the fixed part of every binary element.
-void checkPly(const std::string& path, const std::string& head, uintmax_t file_size) {
+struct PlyProperty {
+  bool list = false;
+  PlyType count_type, value_type;
+};
+
+struct PlyElement {
+  std::string name;
+  uintmax_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::Ascii;
+  std::vector<PlyElement> elements;
+  size_t data_offset = 0;
+};
+
+// Strict PLY header grammar.
+PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
   auto garbled = [&path](size_t line_no, const std::string& why) {
     fail(path, "garbled PLY header (line " + std::to_string(line_no) + "): " + why);
   };
-  size_t pos = 0, line_no = 0;
-  bool binary = false, ended = false;
-  uintmax_t minimum = 0, count = 0, element_bytes = 0;
-  bool in_element = false;
-  auto closeElement = [&]() {
-    if (in_element) minimum += count * element_bytes;
-    if (minimum > file_size)
-      fail(path, "garbled or truncated PLY file: its header declares more data than the file holds");
-  };
-  while (!ended) {
+  PlyHeader header;
+  size_t pos = 0;
+  for (size_t line_no = 1;; ++line_no) {
     const size_t eol = head.find('\n', pos);
     if (eol == std::string::npos)
       fail(path, "garbled or truncated PLY file: no end_header line in its first 64 KiB");
     std::string line = head.substr(pos, eol - pos);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     pos = eol + 1;
-    ++line_no;
     const std::vector<std::string> w = words(line);
     if (line_no == 1) {
       if (w.size() != 1 || (w[0] != "ply" && w[0] != "PLY")) garbled(line_no, "the first line must be 'ply'");
-      continue;
-    }
-    if (line_no == 2) {
-      if (w.size() != 3 || w[0] != "format" ||
-          (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian")) {
-        garbled(line_no, "expected 'format ascii|binary_little_endian|binary_big_endian VERSION'");
+    } else if (line_no == 2) {
+      if (w.size() != 3 || w[0] != "format") garbled(line_no, "expected 'format TYPE VERSION'");
+      if (w[1] == "ascii") {
+        header.format = PlyFormat::Ascii;
+      } else if (w[1] == "binary_little_endian") {
+        header.format = PlyFormat::BinaryLittle;
+      } else if (w[1] == "binary_big_endian") {
+        header.format = PlyFormat::BinaryBig;
+      } else {
+        garbled(line_no, "unknown format '" + w[1] + "'");
       }
-      binary = w[1] != "ascii";
+    } else if (w.empty()) {
+      garbled(line_no, "empty line");
+    } else if (w[0] == "comment" || w[0] == "obj_info") {
       continue;
-    }
-    if (w.empty()) garbled(line_no, "empty line");
-    if (w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header" && w.size() == 1) {
-      ended = true;
+    } else if (w[0] == "end_header" && w.size() == 1) {
+      header.data_offset = pos;
+      return header;
     } else if (w[0] == "element" && w.size() == 3 && isCount(w[2])) {
-      closeElement();
-      in_element = true;
-      count = std::stoull(w[2]);
-      element_bytes = 0;
-    } else if (w[0] == "property" && in_element && w.size() == 3 && plyTypeSize(w[1]) > 0) {
-      element_bytes += binary ? plyTypeSize(w[1]) : 1;
-    } else if (w[0] == "property" && in_element && w.size() == 5 && w[1] == "list" && plyTypeSize(w[2]) > 0 &&
-               plyTypeSize(w[3]) > 0) {
-      element_bytes += binary ? plyTypeSize(w[2]) : 1;
+      header.elements.push_back({w[1], std::stoull(w[2]), {}});
+    } else if (w[0] == "property" && !header.elements.empty() && w.size() == 3 && plyType(w[1]).size > 0) {
+      header.elements.back().properties.push_back({false, {}, plyType(w[1])});
+    } else if (w[0] == "property" && !header.elements.empty() && w.size() == 5 && w[1] == "list" &&
+               plyType(w[2]).integer && plyType(w[3]).size > 0) {
+      header.elements.back().properties.push_back({true, plyType(w[2]), plyType(w[3])});
     } else {
       garbled(line_no, "unexpected '" + line.substr(0, 60) + "'");
     }
   }
-  minimum += pos;  // the header itself
-  closeElement();
 }
+
+// Every value takes at least one byte (ASCII) or its size (binary; the count
+// of a list), so the declared elements must fit into the file.
+void checkPlySize(const std::string& path, const PlyHeader& header, uintmax_t file_size) {
+  uintmax_t needed = std::min(uintmax_t(header.data_offset), file_size);
+  for (const PlyElement& e : header.elements) {
+    uintmax_t bytes = 0;
+    for (const PlyProperty& p : e.properties) {
+      bytes +=
+          header.format == PlyFormat::Ascii ? 1 : uintmax_t(p.list ? p.count_type.size : p.value_type.size);
+    }
+    if (bytes == 0) continue;
+    if (e.count > (file_size - needed) / bytes) {
+      fail(path, "garbled or truncated PLY file: its header declares " + std::to_string(e.count) + " " +
+                     e.name + " elements, more than the file can hold");
+    }
+    needed += e.count * bytes;
+  }
+}
+
+// Walks the ASCII data: every value must be a number and every list count an
+// integer that the remaining data can satisfy (assimp reads past the end or
+// loops for minutes otherwise).
+void checkPlyAsciiData(const std::string& path, const PlyHeader& header, const std::string& data) {
+  size_t pos = header.data_offset;
+  auto next = [&](std::string& token) {
+    while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+    const size_t start = pos;
+    while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+    token.assign(data, start, pos - start);
+    return !token.empty();
+  };
+  std::string token;
+  for (const PlyElement& e : header.elements) {
+    for (uintmax_t n = 0; n < e.count; ++n) {
+      for (const PlyProperty& p : e.properties) {
+        uintmax_t values = 1;
+        if (p.list) {
+          if (!next(token)) fail(path, "truncated PLY file: the " + e.name + " data ends early");
+          if (!isCount(token) || token.size() > 9) {
+            fail(path, "garbled PLY data: bad list length '" + token.substr(0, 20) + "' in " + e.name + " " +
+                           std::to_string(n + 1));
+          }
+          values = std::stoull(token);
+          if (values > data.size() - pos) {
+            fail(path, "garbled or truncated PLY data: bad list length " + token + " in " + e.name + " " +
+                           std::to_string(n + 1));
+          }
+        }
+        for (uintmax_t v = 0; v < values; ++v) {
+          if (!next(token)) fail(path, "truncated PLY file: the " + e.name + " data ends early");
+          char* end = nullptr;
+          std::strtod(token.c_str(), &end);
+          if (end != token.c_str() + token.size()) {
+            fail(path, "garbled PLY data: '" + token.substr(0, 20) + "' is not a number (" + e.name + " " +
+                           std::to_string(n + 1) + ")");
+          }
+        }
+      }
+    }
+  }
+}
+
+uintmax_t readCount(const unsigned char* p, const PlyType& type, bool big_endian, bool& negative) {
+  uintmax_t value = 0;
+  for (int i = 0; i < type.size; ++i)
+    value |= uintmax_t(p[big_endian ? i : type.size - 1 - i]) << (8 * (type.size - 1 - i));
+  negative = type.is_signed && (value >> (8 * type.size - 1)) != 0;
+  return value;
+}
+
+// Walks the binary data: every list length must fit into the file.
+void checkPlyBinaryData(const std::string& path, const PlyHeader& header, const std::string& data) {
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  const uintmax_t size = data.size();
+  uintmax_t pos = header.data_offset;
+  const bool big = header.format == PlyFormat::BinaryBig;
+  for (const PlyElement& e : header.elements) {
+    for (uintmax_t n = 0; n < e.count; ++n) {
+      for (const PlyProperty& p : e.properties) {
+        if (!p.list) {
+          pos += uintmax_t(p.value_type.size);
+        } else {
+          if (pos + uintmax_t(p.count_type.size) > size) {
+            fail(path, "truncated PLY file: the " + e.name + " data ends early");
+          }
+          bool negative = false;
+          const uintmax_t count = readCount(bytes + pos, p.count_type, big, negative);
+          pos += uintmax_t(p.count_type.size);
+          if (negative || count > (size - pos) / uintmax_t(p.value_type.size)) {
+            fail(path,
+                 "garbled or truncated PLY data: bad list length in " + e.name + " " + std::to_string(n + 1));
+          }
+          pos += count * uintmax_t(p.value_type.size);
+        }
+        if (pos > size) fail(path, "truncated PLY file: the " + e.name + " data ends early");
+      }
+    }
+  }
+}
+
+void checkPly(const std::string& path, const std::string& head, uintmax_t file_size) {
+  const PlyHeader header = parsePlyHeader(path, head);
+  checkPlySize(path, header, file_size);
+  const std::string data = readBytes(path, size_t(file_size));
+  if (header.format == PlyFormat::Ascii) {
+    checkPlyAsciiData(path, header, data);
+  } else {
+    checkPlyBinaryData(path, header, data);
+  }
+}
+
+// ---- OFF -------------------------------------------------------------------------
 
 void checkOff(const std::string& path, const std::string& head, uintmax_t file_size) {
   std::istringstream in(head);
@@ -134,8 +272,8 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
 
 }  // namespace
 
-void checkMeshFileHeader(const std::string& path, uintmax_t file_size) {
-  const std::string head = readHead(path);
+void checkMeshFileStructure(const std::string& path, uintmax_t file_size) {
+  const std::string head = readBytes(path, kHeadBytes);
   if (head.compare(0, 3, "ply") == 0 || head.compare(0, 3, "PLY") == 0) {
     checkPly(path, head, file_size);
   } else {

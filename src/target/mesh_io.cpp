@@ -5,13 +5,10 @@
 #include <assimp/scene.h>
 
 #include <Eigen/Geometry>
-#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <sstream>
 
 #include "core/error.h"
@@ -135,7 +132,7 @@ TriangleMesh loadMesh(const std::string& path) {
   const uintmax_t size = fs::file_size(path, ec);
   if (ec) fail(path, "cannot read the file: " + ec.message());
   if (size == 0) fail(path, "the file is empty");
-  checkMeshFileHeader(path, size);
+  checkMeshFileStructure(path, size);
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;

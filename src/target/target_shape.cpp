@@ -2,6 +2,7 @@
 // resolveMeshPath.
 #include "target/target_shape.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +39,13 @@ const char* kindName(TargetKind kind) {
   return "?";
 }
 
+std::string where(const TargetSpec& spec) {
+  std::string s = "target '" + spec.label() + "'";
+  if (spec.kind == TargetKind::Mesh)
+    s += " (" + (spec.resolved_path.empty() ? spec.mesh : spec.resolved_path) + ")";
+  return s;
+}
+
 // The shape, ready to voxelise: its bounding box centred at the origin and
 // scaled to the requested volume.
 struct PreparedShape {
@@ -49,23 +57,27 @@ struct PreparedShape {
 };
 
 PreparedShape prepareMesh(const TargetSpec& spec, double volume) {
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(spec.rotation_deg[a])) throw Error(where(spec) + ": rotation_deg must be finite");
+  }
   const std::string path = spec.resolved_path.empty() ? resolveMeshPath(spec.mesh, "") : spec.resolved_path;
   PreparedShape out;
   out.is_mesh = true;
   out.mesh = loadMesh(path);
-  for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(spec.rotation_deg[a]))
-      throw Error("target '" + spec.label() + "': rotation_deg must be finite");
-  }
   TriangleMesh& mesh = out.mesh;
+
+  // Rotate about the bounding-box centre, then centre the rotated box at the origin.
   Vec3 lo, hi;
   meshBounds(mesh, lo, hi);
   const Eigen::Vector3d centre = 0.5 * (lo + hi).cast<double>();
   const Eigen::Matrix3d rotation = eulerRotationXYZ(spec.rotation_deg);
   std::vector<Eigen::Vector3d> points(mesh.vertices.size());
-  for (size_t i = 0; i < points.size(); ++i)
+  Eigen::AlignedBox3d rotated;
+  for (size_t i = 0; i < points.size(); ++i) {
     points[i] = rotation * (mesh.vertices[i].cast<double>() - centre);
-  for (size_t i = 0; i < points.size(); ++i) mesh.vertices[i] = points[i].cast<float>();
+    rotated.extend(points[i]);
+  }
+  for (size_t i = 0; i < points.size(); ++i) mesh.vertices[i] = (points[i] - rotated.center()).cast<float>();
 
   double mesh_volume = meshVolume(mesh);
   // Inside-out meshes (all faces wound inwards) are accepted: the winding is
@@ -75,15 +87,8 @@ PreparedShape prepareMesh(const TargetSpec& spec, double volume) {
     for (auto& tri : mesh.triangles) std::swap(tri[1], tri[2]);
     mesh_volume = -mesh_volume;
   }
-  // Recentre the rotated bounding box, then scale about the origin.
-  Eigen::Vector3d rlo = points.empty() ? Eigen::Vector3d::Zero() : points[0], rhi = rlo;
-  for (const auto& p : points) {
-    rlo = rlo.cwiseMin(p);
-    rhi = rhi.cwiseMax(p);
-  }
-  const Eigen::Vector3d rcentre = 0.5 * (rlo + rhi);
-  const double scale = std::cbrt(volume / mesh_volume);
-  for (size_t i = 0; i < points.size(); ++i) mesh.vertices[i] = (scale * (points[i] - rcentre)).cast<float>();
+  const float scale = float(std::cbrt(volume / mesh_volume));
+  for (Vec3& v : mesh.vertices) v *= scale;
   meshBounds(mesh, out.lo, out.hi);
   out.volume = meshVolume(mesh);
   return out;
@@ -107,13 +112,6 @@ VoxelGrid voxelizePrepared(const PreparedShape& shape, float voxel, const Vec3& 
     voxelizeAnalytic(shape.analytic, grid);
   }
   return grid;
-}
-
-std::string where(const TargetSpec& spec) {
-  std::string s = "target '" + spec.label() + "'";
-  if (spec.kind == TargetKind::Mesh)
-    s += " (" + (spec.resolved_path.empty() ? spec.mesh : spec.resolved_path) + ")";
-  return s;
 }
 
 double volumeToUse(const TargetSpec& spec, double fluid_rest_volume) {
@@ -280,7 +278,7 @@ std::string resolveMeshPath(const std::string& name, const std::string& scene_di
     }
   }
   std::string msg = "mesh '" + name + "' not found; looked in: ";
-  if (tried.empty()) msg += "(nowhere)";
+  if (tried.empty()) msg += "no folder (a relative path, no scene folder and FLOWFORM_MESH_PATH empty)";
   for (size_t i = 0; i < tried.size(); ++i) msg += (i ? ", " : "") + tried[i];
   msg += " (set FLOWFORM_MESH_PATH to a colon-separated list of folders holding meshes";
   msg += given.is_absolute() ? ", or fix the absolute path)" : ")";

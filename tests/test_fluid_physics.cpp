@@ -3,13 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "core/simulation.h"
-#include "ff_sph.h"
 #include "cpu/backend_cpu.h"
+#include "ff_sph.h"
 
 namespace {
 

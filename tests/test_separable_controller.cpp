@@ -43,7 +43,8 @@ TEST(SeparableController, MovesAPlainParticleSystemIntoASphere) {
   ff::ShapeMatchParams sm;
   c.setParams(cp, sm);
   ff::Vec3 lo(1e9f, 1e9f, 1e9f), hi(-1e9f, -1e9f, -1e9f);
-  for (size_t i = 0; i < n; ++i) lo = lo.cwiseMin(ff::Vec3(x[i], y[i], z[i])), hi = hi.cwiseMax(ff::Vec3(x[i], y[i], z[i]));
+  for (size_t i = 0; i < n; ++i)
+    lo = lo.cwiseMin(ff::Vec3(x[i], y[i], z[i])), hi = hi.cwiseMax(ff::Vec3(x[i], y[i], z[i]));
   c.reset(ff::placeControlParticles(sphere, lo, hi, sm, ff::Vec3(-1, -1, -1), ff::Vec3(1, 1, 1)));
 
   ff::FluidView f;
@@ -52,7 +53,8 @@ TEST(SeparableController, MovesAPlainParticleSystemIntoASphere) {
   f.volume = volume_each;
   const float dt = 0.004f;
   for (int step = 0; step < 750; ++step) {  // 3 s
-    std::fill(ax.begin(), ax.end(), 0.0f), std::fill(ay.begin(), ay.end(), 0.0f), std::fill(az.begin(), az.end(), 0.0f);
+    std::fill(ax.begin(), ax.end(), 0.0f), std::fill(ay.begin(), ay.end(), 0.0f),
+        std::fill(az.begin(), az.end(), 0.0f);
     c.step(f, dt, ax.data(), ay.data(), az.data());
     for (size_t i = 0; i < n; ++i) {
       vx[i] += dt * ax[i], vy[i] += dt * ay[i], vz[i] += dt * az[i];

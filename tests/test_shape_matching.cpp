@@ -17,7 +17,8 @@ ff::ControlSet blockSet(int nx, int ny, int nz, float spacing, std::vector<int>&
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        s.x0.push_back((i + 0.5f) * spacing), s.y0.push_back((j + 0.5f) * spacing), s.z0.push_back((k + 0.5f) * spacing);
+        s.x0.push_back((i + 0.5f) * spacing), s.y0.push_back((j + 0.5f) * spacing),
+            s.z0.push_back((k + 0.5f) * spacing);
         vi.push_back(i), vj.push_back(j), vk.push_back(k);
       }
   size_t n = s.x0.size();

@@ -24,7 +24,8 @@ double radialIntegral(F f, double h, int n = 20000) {
 TEST(SphKernels, Poly6IsNormalised) {
   for (float h : {0.012f, 0.03f, 1.0f}) {
     const float coef = ff_poly6_coef(h);
-    double integral = radialIntegral([&](double r) { return double(ff_poly6(float(r * r), h * h, coef)); }, h);
+    double integral =
+        radialIntegral([&](double r) { return double(ff_poly6(float(r * r), h * h, coef)); }, h);
     EXPECT_NEAR(integral, 1.0, 1e-4) << "h=" << h;
     EXPECT_EQ(ff_poly6(h * h * 1.0001f, h * h, coef), 0.0f);
   }
@@ -47,7 +48,8 @@ TEST(SphKernels, ViscosityLaplacianMatchesKernel) {
   const double h = 0.012;
   const float coef = ff_visc_lap_coef(float(h));
   auto w = [&](double r) {
-    return 15.0 / (2.0 * kPi * h * h * h) * (-r * r * r / (2 * h * h * h) + r * r / (h * h) + h / (2 * r) - 1.0);
+    return 15.0 / (2.0 * kPi * h * h * h) *
+           (-r * r * r / (2 * h * h * h) + r * r / (h * h) + h / (2 * r) - 1.0);
   };
   EXPECT_NEAR(radialIntegral(w, h), 1.0, 1e-3);
   for (double r : {0.002, 0.006, 0.01}) {
@@ -81,7 +83,8 @@ TEST(SphKernels, WallFractionOfPoly6MatchesQuadrature) {
   EXPECT_NEAR(ff_poly6_wall_fraction(h, h, coef), 0.0f, 1e-6f);
   EXPECT_NEAR(ff_poly6_wall_fraction(2 * h, h, coef), 0.0f, 1e-6f);
   for (double d : {0.001, 0.003, 0.006, 0.009}) {
-    double ref = halfSpaceFraction([&](double r) { return double(ff_poly6(float(r * r), h * h, coef)); }, h, d);
+    double ref =
+        halfSpaceFraction([&](double r) { return double(ff_poly6(float(r * r), h * h, coef)); }, h, d);
     EXPECT_NEAR(ff_poly6_wall_fraction(float(d), h, coef), ref, 2e-4) << "d=" << d;
   }
 }

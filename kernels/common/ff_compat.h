@@ -34,12 +34,24 @@ struct ff_float3 {
 struct ff_quat {
   float x, y, z, w;
 };
-inline ff_float3 operator+(ff_float3 a, ff_float3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline ff_float3 operator-(ff_float3 a, ff_float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline ff_float3 operator-(ff_float3 a) { return {-a.x, -a.y, -a.z}; }
-inline ff_float3 operator*(ff_float3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
-inline ff_float3 operator*(float s, ff_float3 a) { return {a.x * s, a.y * s, a.z * s}; }
-inline ff_float3 operator/(ff_float3 a, float s) { return {a.x / s, a.y / s, a.z / s}; }
+inline ff_float3 operator+(ff_float3 a, ff_float3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline ff_float3 operator-(ff_float3 a, ff_float3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline ff_float3 operator-(ff_float3 a) {
+  return {-a.x, -a.y, -a.z};
+}
+inline ff_float3 operator*(ff_float3 a, float s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline ff_float3 operator*(float s, ff_float3 a) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+inline ff_float3 operator/(ff_float3 a, float s) {
+  return {a.x / s, a.y / s, a.z / s};
+}
 inline ff_float3& operator+=(ff_float3& a, ff_float3 b) {
   a = a + b;
   return a;
@@ -59,14 +71,17 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
 #define FF_FMIN(a, b) std::fmin((float)(a), (float)(b))
 #define FF_FMAX(a, b) std::fmax((float)(a), (float)(b))
 #define FF_DOT(a, b) ((a).x * (b).x + (a).y * (b).y + (a).z * (b).z)
-#define FF_CROSS(a, b)                                                                   \
-  FF_F3((a).y * (b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z,                    \
-        (a).x * (b).y - (a).y * (b).x)
+#define FF_CROSS(a, b) \
+  FF_F3((a).y*(b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z, (a).x * (b).y - (a).y * (b).x)
 #endif
 
 #define FF_PI 3.14159265358979323846f
 
-FF_FN float ff_length(ff_float3 a) { return FF_SQRT(FF_DOT(a, a)); }
-FF_FN float ff_clampf(float v, float lo, float hi) { return FF_FMIN(FF_FMAX(v, lo), hi); }
+FF_FN float ff_length(ff_float3 a) {
+  return FF_SQRT(FF_DOT(a, a));
+}
+FF_FN float ff_clampf(float v, float lo, float hi) {
+  return FF_FMIN(FF_FMAX(v, lo), hi);
+}
 
 #endif /* FF_COMPAT_H */

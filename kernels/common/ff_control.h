@@ -6,7 +6,9 @@
 #include "ff_sph.h"
 
 /* Eq. 5: density scale of a control particle from rho_hat = sum_e V_e W. */
-FF_FN float ff_control_scale(float rho_hat) { return 1.0f - FF_FMIN(1.0f, rho_hat); }
+FF_FN float ff_control_scale(float rho_hat) {
+  return 1.0f - FF_FMIN(1.0f, rho_hat);
+}
 
 /* Share of a fluid particle's weight that the control carries. wsum * v_c is
  * the part of the particle's neighbourhood filled by control particles of rest
@@ -15,7 +17,9 @@ FF_FN float ff_control_scale(float rho_hat) { return 1.0f - FF_FMIN(1.0f, rho_ha
  * surface (ff_control_full_coverage): the control carries all the weight of
  * fluid inside the shape and up to one spacing outside it (the voxelisation's
  * own uncertainty), fading to none at the edge of its reach. */
-FF_FN float ff_control_held(float wsum, float v_c, float full_at) { return FF_FMIN(1.0f, wsum * v_c / full_at); }
+FF_FN float ff_control_held(float wsum, float v_c, float full_at) {
+  return FF_FMIN(1.0f, wsum * v_c / full_at);
+}
 
 /* The coverage one control-particle spacing (cbrt(v_c)) outside a flat surface
  * of the shape, for control radius r with poly6 coefficient coef. */

@@ -26,9 +26,13 @@ FF_FN ff_mat3 ff_mat3_add_outer(ff_mat3 m, ff_float3 a, ff_float3 b) {
   return m;
 }
 
-FF_FN ff_float3 ff_mat3_mul_vec(ff_mat3 m, ff_float3 v) { return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z; }
+FF_FN ff_float3 ff_mat3_mul_vec(ff_mat3 m, ff_float3 v) {
+  return m.c0 * v.x + m.c1 * v.y + m.c2 * v.z;
+}
 
-FF_FN float ff_mat3_det(ff_mat3 m) { return FF_DOT(m.c0, FF_CROSS(m.c1, m.c2)); }
+FF_FN float ff_mat3_det(ff_mat3 m) {
+  return FF_DOT(m.c0, FF_CROSS(m.c1, m.c2));
+}
 
 /* Hamilton product a (x) b. */
 FF_FN ff_quat ff_quat_mul(ff_quat a, ff_quat b) {

@@ -5,9 +5,15 @@
 #include "ff_compat.h"
 
 /* Kernel constants for support radius h (precomputed once per run). */
-FF_FN float ff_poly6_coef(float h) { return 315.0f / (64.0f * FF_PI * h * h * h * h * h * h * h * h * h); }
-FF_FN float ff_spiky_grad_coef(float h) { return 45.0f / (FF_PI * h * h * h * h * h * h); }
-FF_FN float ff_visc_lap_coef(float h) { return 45.0f / (FF_PI * h * h * h * h * h * h); }
+FF_FN float ff_poly6_coef(float h) {
+  return 315.0f / (64.0f * FF_PI * h * h * h * h * h * h * h * h * h);
+}
+FF_FN float ff_spiky_grad_coef(float h) {
+  return 45.0f / (FF_PI * h * h * h * h * h * h);
+}
+FF_FN float ff_visc_lap_coef(float h) {
+  return 45.0f / (FF_PI * h * h * h * h * h * h);
+}
 
 /* W_poly6 from the squared distance r2 (0 outside the support). */
 FF_FN float ff_poly6(float r2, float h2, float coef) {
@@ -23,10 +29,14 @@ FF_FN float ff_spiky_grad_factor(float r, float h, float coef) {
 }
 
 /* Laplacian of the viscosity kernel. */
-FF_FN float ff_visc_lap(float r, float h, float coef) { return r < h ? coef * (h - r) : 0.0f; }
+FF_FN float ff_visc_lap(float r, float h, float coef) {
+  return r < h ? coef * (h - r) : 0.0f;
+}
 
 /* Equation of state p = k (rho - rho0). */
-FF_FN float ff_pressure(float rho, float rho0, float k) { return k * (rho - rho0); }
+FF_FN float ff_pressure(float rho, float rho0, float k) {
+  return k * (rho - rho0);
+}
 
 /* ---------------------------------------------------------------------------
  * Planar wall boundary.
@@ -46,8 +56,7 @@ FF_FN float ff_poly6_wall_fraction(float d, float h, float coef) {
   float h2 = h * h, h4 = h2 * h2, h6 = h4 * h2, h8 = h4 * h4;
   float d2 = d * d, d3 = d2 * d, d5 = d3 * d2, d7 = d5 * d2, d9 = d7 * d2;
   float ph = h8 * h * (128.0f / 315.0f);
-  float pd = h8 * d - (4.0f / 3.0f) * h6 * d3 + (6.0f / 5.0f) * h4 * d5 - (4.0f / 7.0f) * h2 * d7 +
-             d9 / 9.0f;
+  float pd = h8 * d - (4.0f / 3.0f) * h6 * d3 + (6.0f / 5.0f) * h4 * d5 - (4.0f / 7.0f) * h2 * d7 + d9 / 9.0f;
   return 0.25f * FF_PI * coef * (ph - pd);
 }
 

@@ -36,7 +36,8 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     vk[p] = int(std::floor((r.z() - g.origin.z()) / g.voxel));
   }
   set.particle_volume = g.voxel * g.voxel * g.voxel;
-  set.rest_cx = float(sx / double(n)), set.rest_cy = float(sy / double(n)), set.rest_cz = float(sz / double(n));
+  set.rest_cx = float(sx / double(n)), set.rest_cy = float(sy / double(n)),
+  set.rest_cz = float(sz / double(n));
 
   // Fit the rigid goal shape (rest shape around the placed centre of mass) into the container.
   double px = 0, py = 0, pz = 0;
@@ -53,6 +54,10 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
       shift[d] = box_lo[d] - glo;
     else if (ghi > box_hi[d])
       shift[d] = box_hi[d] - ghi;
+    // Never by more than half the region: the particles must start over
+    // their fluid, or they would form the shape away from it.
+    const float cap = 0.5f * rext[d];
+    shift[d] = std::fmax(-cap, std::fmin(cap, shift[d]));
   }
   for (size_t p = 0; p < n; ++p) set.x[p] += shift.x(), set.y[p] += shift.y(), set.z[p] += shift.z();
   buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width);

@@ -16,7 +16,9 @@ namespace ff {
 // forms around it. Where the rigid shape around that centre would cross the
 // container [box_lo, box_hi], all particles are shifted so that it fits (a
 // shape that is larger than the container along an axis is centred on it):
-// otherwise the walls would push the forming shape away from its fluid.
+// otherwise the walls would push the forming shape away from its fluid. The
+// shift is at most half the region's extent along each axis, so the particles
+// still start over the fluid they control.
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi);
 

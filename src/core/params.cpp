@@ -14,10 +14,9 @@ float FluidParams::restSpacing() const {
 }
 
 int FluidParams::substepsFor(double max_density, double max_speed) const {
-  const double rho = std::max(double(rest_density), max_density);
-  const double spacing = std::cbrt(double(particle_mass) / rho);
+  (void)max_density;  // the sound speed of p = k (rho - rho0) does not depend on density
   const double c = std::sqrt(std::max(0.0, double(gas_constant)));
-  const double dt_cfl = double(cfl) * spacing / (c + max_speed + 1e-12);
+  const double dt_cfl = double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12);
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }
@@ -84,7 +83,8 @@ void validateParams(const Params& p, const std::string& where) {
   check(where, "params.fluid.cfl", f.cfl, f.cfl > 0 && f.cfl <= 1, "in (0, 1]");
   if (f.max_substeps < 1 || f.max_substeps > 1000)
     throw Error((where.empty() ? std::string() : where + ": ") +
-                "params.fluid.max_substeps: must be in [1, 1000] (got " + std::to_string(f.max_substeps) + ")");
+                "params.fluid.max_substeps: must be in [1, 1000] (got " + std::to_string(f.max_substeps) +
+                ")");
 
   const ControlParams& c = p.control;
   positive(where, "params.control.radius", c.radius);

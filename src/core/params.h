@@ -19,14 +19,14 @@ struct FluidParams {
   float particle_radius = 0.0059f;  // used for rendering and export only
   float smoothing_radius = 0.012f;  // h
   float rest_density = 800.0f;
-  float gas_constant = 0.5f;        // k in p = k (rho - rho0)
-  float viscosity = 0.02f;          // mu
+  float gas_constant = 0.5f;  // k in p = k (rho - rho0)
+  float viscosity = 0.02f;    // mu
   float time_step = 0.004f;
   float gravity[3] = {0.0f, -9.81f, 0.0f};
   // Stability without tuning. Each step of `time_step` is split into as many
-  // equal substeps as the CFL condition dt <= cfl * d / (c + v_max) asks for,
-  // where c = sqrt(k) is the sound speed of p = k (rho - rho0) and d the
-  // particle spacing at the highest density (up to max_substeps).
+  // equal substeps as the CFL condition dt <= cfl * h / (c + v_max) asks for,
+  // where c = sqrt(k) is the sound speed of p = k (rho - rho0) and h the
+  // smoothing radius (up to max_substeps).
   float cfl = 0.4f;
   int max_substeps = 16;
   // Last safeguard: no particle moves more than this fraction of h in one
@@ -40,10 +40,10 @@ struct FluidParams {
 };
 
 struct ControlParams {
-  float radius = 0.03f;          // influence radius of a control particle
-  float attraction = 0.00008f;   // w_a
-  float velocity = 0.00005f;     // w_v
-  float feedback = 0.02f;        // fluid feedback coefficient
+  float radius = 0.03f;         // influence radius of a control particle
+  float attraction = 0.00008f;  // w_a
+  float velocity = 0.00005f;    // w_v
+  float feedback = 0.02f;       // fluid feedback coefficient
   // Share of gravity that the control particles carry for the fluid they hold
   // (after Thuerey et al. 2006, who scale gravity down where control acts).
   // 0 = none (the paper's text), 1 = full inside the target shape.
@@ -52,8 +52,8 @@ struct ControlParams {
 };
 
 struct ShapeMatchParams {
-  float stiffness = 0.3f;   // alpha of eq. 7
-  float time_step = 0.005f; // the shape-matching clock, independent of the fluid's
+  float stiffness = 0.3f;    // alpha of eq. 7
+  float time_step = 0.005f;  // the shape-matching clock, independent of the fluid's
   // Clusters: one centred on every `cluster_stride`-th reference voxel, holding
   // the control particles within `cluster_half_width` voxels (a cube), so that
   // neighbouring clusters overlap.

@@ -107,8 +107,8 @@ void Simulation::setTarget(const TargetSpec& spec) {
   target_spec_ = spec;
   has_target_ = true;
   controlled_ = count;
-  backend_->setControl(
-      placeControlParticles(*target_, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max));
+  backend_->setControl(placeControlParticles(*target_, lo, hi, scene_.params.shape, scene_.container.min,
+                                             scene_.container.max));
   backend_->setMetricsTarget(target_);
 }
 

@@ -10,8 +10,8 @@
 namespace ff {
 
 const char* phaseName(Phase p) {
-  static const char* names[] = {"grid",           "density",    "forces",         "control_scale",
-                                "control_forces", "integrate",  "shape_matching", "metrics"};
+  static const char* names[] = {"grid",           "density",   "forces",         "control_scale",
+                                "control_forces", "integrate", "shape_matching", "metrics"};
   int i = int(p);
   return i >= 0 && i < int(Phase::Count) ? names[i] : "?";
 }
@@ -62,9 +62,13 @@ FluidView CpuBackend::view() const {
   return v;
 }
 
-void CpuBackend::buildGrid() { buildFluidGrid(fluid_, params_.fluid.smoothing_radius); }
+void CpuBackend::buildGrid() {
+  buildFluidGrid(fluid_, params_.fluid.smoothing_radius);
+}
 
-void CpuBackend::computeDensity() { solver_->computeDensity(fluid_, params_.fluid, box_); }
+void CpuBackend::computeDensity() {
+  solver_->computeDensity(fluid_, params_.fluid, box_);
+}
 
 void CpuBackend::computeForces() {
   const size_t n = fluid_.size();
@@ -82,9 +86,13 @@ void CpuBackend::applyControlForces(float dt) {
     controller_.addForces(view(), dt, fluid_.ax.data(), fluid_.ay.data(), fluid_.az.data());
 }
 
-void CpuBackend::integrate(float dt) { integrateFluid(fluid_, params_.fluid, box_, dt); }
+void CpuBackend::integrate(float dt) {
+  integrateFluid(fluid_, params_.fluid, box_, dt);
+}
 
-int CpuBackend::shapeMatching(float dt) { return controller_.advance(dt); }
+int CpuBackend::shapeMatching(float dt) {
+  return controller_.advance(dt);
+}
 
 StepMetrics CpuBackend::computeMetrics() {
   StepMetrics m;
@@ -114,7 +122,8 @@ StepMetrics CpuBackend::computeMetrics() {
       bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
       const float h = params_.fluid.smoothing_radius;
       metrics_grid_.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
-      m.iou = voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), metrics_grid_, mass, h, rho0, 0.5f);
+      m.iou = voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), metrics_grid_, mass, h, rho0,
+                       0.5f);
     }
   }
   return m;

@@ -32,7 +32,9 @@ class CpuBackend : public Backend {
   bool finiteAfter(Phase phase) override;
 
   void readFluid(FluidState& out) override { out = fluid_.s; }
-  void readDensity(std::vector<float>& rho, std::vector<float>& p) override { rho = fluid_.rho, p = fluid_.p; }
+  void readDensity(std::vector<float>& rho, std::vector<float>& p) override {
+    rho = fluid_.rho, p = fluid_.p;
+  }
   void readControl(ControlSet& set, ControlFields& fields) override {
     set = controller_.set(), fields = controller_.fields();
   }

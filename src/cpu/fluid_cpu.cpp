@@ -74,8 +74,9 @@ void addPressureAccel(CpuFluid& f, const FluidParams& p, const ContainerDesc& bo
       }
     });
     float a[3] = {fx / rhoi, fy / rhoi, fz / rhoi};
-    forEachWall(xi, yi, zi, h, box,
-                [&](int d, float dist, float sign) { a[d] += sign * ff_wall_pressure_accel(dist, h, pi, rhoi); });
+    forEachWall(xi, yi, zi, h, box, [&](int d, float dist, float sign) {
+      a[d] += sign * ff_wall_pressure_accel(dist, h, pi, rhoi);
+    });
     f.ax[i] += a[0], f.ay[i] += a[1], f.az[i] += a[2];
   }
 }
@@ -99,7 +100,8 @@ void addViscosityGravity(CpuFluid& f, const FluidParams& p) {
       });
     }
     const float inv = mu / f.rho[i];
-    f.ax[i] += fx * inv + p.gravity[0], f.ay[i] += fy * inv + p.gravity[1], f.az[i] += fz * inv + p.gravity[2];
+    f.ax[i] += fx * inv + p.gravity[0], f.ay[i] += fy * inv + p.gravity[1],
+        f.az[i] += fz * inv + p.gravity[2];
   }
 }
 

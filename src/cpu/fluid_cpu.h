@@ -10,10 +10,10 @@
 namespace ff {
 
 struct CpuFluid {
-  FluidState s;                       // sorted by grid cell after buildFluidGrid
-  std::vector<float> rho, p;          // density, pressure
-  std::vector<float> ax, ay, az;      // accelerations of this step
-  UniformGrid grid;                   // cell size h
+  FluidState s;                   // sorted by grid cell after buildFluidGrid
+  std::vector<float> rho, p;      // density, pressure
+  std::vector<float> ax, ay, az;  // accelerations of this step
+  UniformGrid grid;               // cell size h
   std::vector<float> scratch;
   std::vector<uint32_t> scratch_u;
   size_t size() const { return s.size(); }

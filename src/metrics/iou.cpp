@@ -16,11 +16,12 @@ double voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, con
 #pragma omp parallel for schedule(static) reduction(+ : inter, uni)
   for (long v = 0; v < total; ++v) {
     const int i = int(v % nx) - pad, j = int((v / nx) % ny) - pad, k = int(v / (long(nx) * ny)) - pad;
-    const bool in_target = i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz && g.inside[g.index(i, j, k)];
+    const bool in_target =
+        i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz && g.inside[g.index(i, j, k)];
     const Vec3 c = g.center(i, j, k);
-    const ff_float3 w = ff_mat3_mul_vec(r, FF_F3(c.x() - frame.rest_c[0], c.y() - frame.rest_c[1],
-                                                 c.z() - frame.rest_c[2])) +
-                        FF_F3(frame.c[0], frame.c[1], frame.c[2]);
+    const ff_float3 w =
+        ff_mat3_mul_vec(r, FF_F3(c.x() - frame.rest_c[0], c.y() - frame.rest_c[1], c.z() - frame.rest_c[2])) +
+        FF_F3(frame.c[0], frame.c[1], frame.c[2]);
     float sum = 0.0f;
     grid.forEachRange(w.x, w.y, w.z, [&](uint32_t b, uint32_t e) {
       for (uint32_t kk = b; kk < e; ++kk) {

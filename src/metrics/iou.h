@@ -8,7 +8,7 @@ namespace ff {
 
 struct RigidFrame {
   ff_quat q = FF_Q(0.0f, 0.0f, 0.0f, 1.0f);  // rotation from the target frame to the world
-  float c[3] = {0, 0, 0};                      // world position of the target's rest centre `rest_c`
+  float c[3] = {0, 0, 0};                    // world position of the target's rest centre `rest_c`
   float rest_c[3] = {0, 0, 0};
 };
 

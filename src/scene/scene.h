@@ -30,7 +30,7 @@ struct FluidBlockDesc {
 struct RegionDesc {
   enum class Kind { All, Box, Sphere } kind = Kind::All;
   Vec3 min{0.0f, 0.0f, 0.0f}, max{0.0f, 0.0f, 0.0f};  // Box
-  Vec3 center{0.0f, 0.0f, 0.0f};                       // Sphere
+  Vec3 center{0.0f, 0.0f, 0.0f};                      // Sphere
   float radius = 0.0f;
 };
 

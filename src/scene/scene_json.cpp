@@ -133,10 +133,10 @@ void readParams(const Reader& r, const json& j, Params& p) {
   r.object(j, "params", {"fluid", "control", "shape_matching"});
   if (j.contains("fluid")) {
     const std::string path = "params.fluid";
-    const json& f = r.object(j["fluid"], path,
-                             {"particle_mass", "particle_radius", "smoothing_radius", "rest_density",
-                              "gas_constant", "viscosity", "time_step", "gravity", "max_step_fraction",
-                              "cfl", "max_substeps"});
+    const json& f =
+        r.object(j["fluid"], path,
+                 {"particle_mass", "particle_radius", "smoothing_radius", "rest_density", "gas_constant",
+                  "viscosity", "time_step", "gravity", "max_step_fraction", "cfl", "max_substeps"});
     FluidParams& o = p.fluid;
     r.opt(f, path, "particle_mass", o.particle_mass);
     r.opt(f, path, "particle_radius", o.particle_radius);
@@ -155,7 +155,9 @@ void readParams(const Reader& r, const json& j, Params& p) {
   }
   if (j.contains("control")) {
     const std::string path = "params.control";
-    const json& c = r.object(j["control"], path, {"radius", "attraction", "velocity", "feedback", "gravity_compensation", "units"});
+    const json& c =
+        r.object(j["control"], path,
+                 {"radius", "attraction", "velocity", "feedback", "gravity_compensation", "units"});
     ControlParams& o = p.control;
     r.opt(c, path, "radius", o.radius);
     r.opt(c, path, "attraction", o.attraction);
@@ -177,9 +179,9 @@ void readParams(const Reader& r, const json& j, Params& p) {
   }
   if (j.contains("shape_matching")) {
     const std::string path = "params.shape_matching";
-    const json& s =
-        r.object(j["shape_matching"], path,
-                 {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations", "damping"});
+    const json& s = r.object(
+        j["shape_matching"], path,
+        {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations", "damping"});
     ShapeMatchParams& o = p.shape;
     r.opt(s, path, "stiffness", o.stiffness);
     r.opt(s, path, "time_step", o.time_step);

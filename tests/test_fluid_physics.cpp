@@ -48,9 +48,32 @@ TEST(FluidPhysics, NoDensityDeficiencyAtTheWalls) {
     if (ix == 0 && iy == 0 && iz == 0) corner += f.rho[i], ++nc;
   }
   interior /= ni, wall /= nw, corner /= nc;
-  // Without the wall term the wall layer would miss about 30% of its density.
-  EXPECT_NEAR(wall / interior, 1.0, 0.03) << "interior " << interior << " wall " << wall;
-  EXPECT_NEAR(corner / interior, 1.0, 0.06) << "corner " << corner;
+  // The same particles without any wall term: the deficiency we remove.
+  double bare = 0;
+  {
+    const float h = p.fluid.smoothing_radius, c = ff_poly6_coef(h);
+    int nb = 0;
+    for (size_t i = 0; i < f.size(); ++i) {
+      int ix = int(f.s.x[i] / sp), iy = int(f.s.y[i] / sp), iz = int(f.s.z[i] / sp);
+      if (!(ix == 0 && iy >= 3 && iy < n - 3 && iz >= 3 && iz < n - 3)) continue;
+      double sum = 0;
+      for (size_t j = 0; j < f.size(); ++j) {
+        const float dx = f.s.x[i] - f.s.x[j], dy = f.s.y[i] - f.s.y[j], dz = f.s.z[i] - f.s.z[j];
+        sum += p.fluid.particle_mass * ff_poly6(dx * dx + dy * dy + dz * dz, h * h, c);
+      }
+      bare += sum, ++nb;
+    }
+    bare /= nb;
+  }
+  // Without it the wall layer misses the kernel share beyond the wall at
+  // d = spacing / 2, about 17%.
+  EXPECT_LT(bare / interior, 0.88) << "bare wall layer " << bare;
+  // The analytic wall integrates the kernel over a continuous half-space; the
+  // lattice beyond a real wall would be discrete, which differs by a few
+  // percent (0.0032 m from the wall the first mirror layer sits at 0.0095 m,
+  // where poly6 is steep); 5% is well below the 17% it removes.
+  EXPECT_NEAR(wall / interior, 1.0, 0.05) << "interior " << interior << " wall " << wall;
+  EXPECT_NEAR(corner / interior, 1.0, 0.08) << "corner " << corner;
 }
 
 TEST(FluidPhysics, RestingColumnIsHydrostatic) {

@@ -47,9 +47,10 @@ void computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDe
         sum += ff_poly6(dx * dx + dy * dy + dz * dz, h2, coef);
       }
     });
-    float wall = 0.0f;
-    forEachWall(xi, yi, zi, h, box, [&](int, float d, float) { wall += ff_poly6_wall_fraction(d, h, coef); });
-    const float rho = m * sum + rho0 * wall;
+    float fluid_side = 1.0f;
+    forEachWall(xi, yi, zi, h, box,
+                [&](int, float d, float) { fluid_side *= 1.0f - ff_poly6_wall_fraction(d, h, coef); });
+    const float rho = m * sum + rho0 * ff_combine_wall_fractions(fluid_side);
     f.rho[i] = rho;
     f.p[i] = ff_pressure(rho, rho0, k);
   }

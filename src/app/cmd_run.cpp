@@ -11,7 +11,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/simulation.h"
-#include "cpu/backend_cpu.h"
+#include "host/backend_factory.h"
 #include "io/metrics_csv.h"
 #include "io/ply_writer.h"
 
@@ -24,6 +24,8 @@ struct RunOptions {
   double seconds = 0.0;
   long steps = 0;
   int threads = 0;
+  std::string backend = "auto";
+  int device = -1;
   std::string metrics;
   std::string export_dir;
   int export_every = 0;
@@ -62,16 +64,18 @@ int runScene(const RunOptions& o) {
   }
   const int export_every = o.export_every > 0 ? o.export_every : 1;
 
-  auto backend = std::make_unique<CpuBackend>(o.threads);
+  std::string note;
+  auto backend = makeBackend(o.backend, o.device, o.threads, &note);
+  if (!note.empty()) std::printf("flowform: %s\n", note.c_str());
   Simulation sim(scene, std::move(backend));
   std::printf("flowform: scene '%s' (%s), %zu fluid particles, backend %s (%s), %ld steps of %.4g s\n",
-              scene.name.c_str(), scene.source.c_str(), size_t(scene.fluidCount()), sim.backend().name().c_str(),
-              sim.backend().device().c_str(), steps, dt);
+              scene.name.c_str(), scene.source.c_str(), size_t(scene.fluidCount()),
+              sim.backend().name().c_str(), sim.backend().device().c_str(), steps, dt);
 
   MetricsCsv csv;
   if (!o.metrics.empty())
     csv.open(o.metrics, {"step", "time", "iou", "coverage", "max_speed", "density_error", "kinetic_energy",
-                         "control_count"});
+                         "control_count", "max_density", "substeps"});
   const int print_every = o.print_every > 0 ? o.print_every : std::max(1L, long(std::lround(0.5 / dt)));
   auto t0 = std::chrono::steady_clock::now();
   long frame = 0;
@@ -81,7 +85,7 @@ int runScene(const RunOptions& o) {
     const StepMetrics& m = sim.metrics();
     if (csv.isOpen())
       csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
-               double(m.control_count)});
+               double(m.control_count), m.max_density, double(m.substeps)});
     if (!o.export_dir.empty() && (s + 1) % export_every == 0) exportFrame(sim, o.export_dir, frame++);
     if ((s + 1) % print_every == 0 || s + 1 == steps)
       std::printf("  t=%6.3f s  iou=%.3f  coverage=%.3f  max_speed=%.3f m/s  density_error=%.3f  target=%s\n",
@@ -109,13 +113,21 @@ std::function<int()> addRunCommand(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* run = app.add_subcommand("run", "Run a scene headless (the default scene if none is given)");
   run->add_option("scene", o->scene, "Scene file (JSON); omitted: the built-in default scene");
-  auto* sec = run->add_option("--seconds", o->seconds, "Simulated seconds (default: the scene's duration)");
-  auto* st = run->add_option("--steps", o->steps, "Number of steps");
+  auto* sec = run->add_option("--seconds", o->seconds, "Simulated seconds (default: the scene's duration)")
+                  ->check(CLI::PositiveNumber);
+  auto* st = run->add_option("--steps", o->steps, "Number of steps")->check(CLI::PositiveNumber);
   sec->excludes(st);
-  run->add_option("--threads", o->threads, "OpenMP threads (default: all cores)");
+  run->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--backend", o->backend,
+                  "auto (an OpenCL GPU if there is one, else the CPU), cpu or opencl")
+      ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
+  run->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
   run->add_option("--metrics", o->metrics, "Write per-step metrics to this CSV file");
   auto* ex = run->add_option("--export", o->export_dir, "Write PLY frames into this folder");
-  run->add_option("--export-every", o->export_every, "Export every K steps (default 1)")->needs(ex);
+  run->add_option("--export-every", o->export_every, "Export every K steps (default 1)")
+      ->needs(ex)
+      ->check(CLI::PositiveNumber);
   run->add_option("--print-every", o->print_every, "Print metrics every K steps");
   return [o] { return runScene(*o); };
 }

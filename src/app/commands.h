@@ -7,5 +7,6 @@ namespace ff::app {
 // Each adds its subcommand to `app`; the returned function runs it and gives
 // the process exit code.
 std::function<int()> addRunCommand(CLI::App& app);
+std::function<int()> addDevicesCommand(CLI::App& app);
 
 }  // namespace ff::app

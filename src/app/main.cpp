@@ -9,9 +9,11 @@
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they happen, also in logs
-  CLI::App app{"flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};
+  CLI::App app{
+      "flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};
   app.require_subcommand(0, 1);
   auto run = ff::app::addRunCommand(app);
+  auto devices = ff::app::addDevicesCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -20,6 +22,7 @@ int main(int argc, char** argv) {
   try {
     for (CLI::App* sub : app.get_subcommands()) {
       if (sub->get_name() == "run") return run();
+      if (sub->get_name() == "devices") return devices();
     }
     // No subcommand: run the default scene.
     return run();

@@ -11,7 +11,9 @@ namespace {
 int64_t key(int a, int b, int c) {
   return (int64_t(a) + (1 << 20)) | ((int64_t(b) + (1 << 20)) << 21) | ((int64_t(c) + (1 << 20)) << 42);
 }
-int floorDiv(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+int floorDiv(int a, int b) {
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
 }  // namespace
 
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
@@ -22,7 +24,8 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   std::vector<int64_t> centre_keys;
   std::vector<int> cxs, cys, czs;
   for (size_t p = 0; p < n; ++p) {
-    int lo[3] = {floorDiv(vi[p] - half_width + stride - 1, stride), floorDiv(vj[p] - half_width + stride - 1, stride),
+    int lo[3] = {floorDiv(vi[p] - half_width + stride - 1, stride),
+                 floorDiv(vj[p] - half_width + stride - 1, stride),
                  floorDiv(vk[p] - half_width + stride - 1, stride)};
     int hi[3] = {floorDiv(vi[p] + half_width, stride), floorDiv(vj[p] + half_width, stride),
                  floorDiv(vk[p] + half_width, stride)};

@@ -13,8 +13,8 @@ namespace ff {
 
 // Overlapping clusters in compressed-row form.
 struct Clusters {
-  std::vector<uint32_t> start;    // cluster c holds members[start[c] .. start[c+1])
-  std::vector<uint32_t> members;  // control-particle indices
+  std::vector<uint32_t> start;                   // cluster c holds members[start[c] .. start[c+1])
+  std::vector<uint32_t> members;                 // control-particle indices
   std::vector<float> rest_cx, rest_cy, rest_cz;  // rest centre of mass of each cluster
   // particle -> clusters, compressed-row: particle i is in of[of_start[i] .. of_start[i+1])
   std::vector<uint32_t> of_start;
@@ -28,7 +28,7 @@ struct ControlSet {
   std::vector<float> x0, y0, z0;  // rest positions (reference particles, target frame)
   Clusters clusters;
   float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
-  float particle_volume = 0;  // rest volume of one control particle (the voxel volume)
+  float particle_volume = 0;                    // rest volume of one control particle (the voxel volume)
   size_t size() const { return x.size(); }
 };
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "control/shape_matching.h"
 #include "ff_control.h"
 #include "ff_sph.h"
-#include "control/shape_matching.h"
 
 namespace ff {
 

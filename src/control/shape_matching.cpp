@@ -2,8 +2,8 @@
 
 namespace ff {
 
-void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx, std::vector<float>& cy,
-                   std::vector<float>& cz, int iterations) {
+void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx,
+                   std::vector<float>& cy, std::vector<float>& cz, int iterations) {
   const Clusters& cl = set.clusters;
   const long nc = long(cl.count());
   q.resize(size_t(nc), FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
@@ -62,7 +62,8 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
     for (uint32_t k = b; k < e; ++k) {
       uint32_t c = cl.of[k];
       ff_mat3 r = ff_quat_to_mat3(q[c]);
-      g += ff_mat3_mul_vec(r, x0 - FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c])) + FF_F3(cx[c], cy[c], cz[c]);
+      g += ff_mat3_mul_vec(r, x0 - FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c])) +
+           FF_F3(cx[c], cy[c], cz[c]);
     }
     const float inv = e > b ? 1.0f / float(e - b) : 0.0f;
     gx[p] = g.x * inv, gy[p] = g.y * inv, gz[p] = g.z * inv;

@@ -11,8 +11,8 @@ namespace ff {
 
 // Centre of mass and rotation of every cluster. `q` holds one warm-start
 // quaternion per cluster and receives the new rotations.
-void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx, std::vector<float>& cy,
-                   std::vector<float>& cz, int iterations);
+void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx,
+                   std::vector<float>& cy, std::vector<float>& cz, int iterations);
 
 // Mean velocity of every cluster's members.
 void clusterVelocities(const ControlSet& set, std::vector<float>& vx, std::vector<float>& vy,

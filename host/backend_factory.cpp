@@ -1,0 +1,75 @@
+#include "host/backend_factory.h"
+
+#include "core/error.h"
+#include "cpu/backend_cpu.h"
+#ifndef FF_NO_OPENCL
+#include "host/backend_opencl.h"
+#include "host/cl_context.h"
+#endif
+
+namespace ff {
+
+#ifndef FF_NO_OPENCL
+namespace {
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "none" : s;
+}
+
+std::string platformList() {
+  try {
+    return joined(listClPlatformNames());
+  } catch (const Error&) {
+    return "none";
+  }
+}
+
+std::string firstLine(const std::string& s) {
+  const size_t nl = s.find('\n');
+  return nl == std::string::npos ? s : s.substr(0, nl) + " ... (--backend opencl shows all of it)";
+}
+
+}  // namespace
+#endif
+
+std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note) {
+  if (note) note->clear();
+  if (kind != "auto" && kind != "cpu" && kind != "opencl")
+    throw Error("--backend: unknown backend '" + kind + "' (known: auto, cpu, opencl)");
+  if (device < -1) throw Error("--device: must be >= 0 (got " + std::to_string(device) + ")");
+  if (kind == "cpu") {
+    if (device >= 0) throw Error("--device: only applies to the OpenCL backend (--backend opencl or auto)");
+    return std::make_unique<CpuBackend>(threads);
+  }
+#ifdef FF_NO_OPENCL
+  if (kind == "opencl")
+    throw Error("--backend opencl: this flowform was built without OpenCL (FLOWFORM_OPENCL=OFF)");
+  if (note) *note = "built without OpenCL; using the OpenMP CPU backend";
+  return std::make_unique<CpuBackend>(threads);
+#else
+  if (kind == "opencl") return std::make_unique<OpenClBackend>(device);
+
+  // auto: an OpenCL GPU (or the device asked for), else the CPU backend.
+  std::string why;
+  try {
+    int pick = device;
+    if (pick < 0) {
+      for (const ClDeviceInfo& d : listClDevices())
+        if (d.isGpu()) {
+          pick = d.index;
+          break;
+        }
+    }
+    if (pick >= 0) return std::make_unique<OpenClBackend>(pick);
+    why = "no OpenCL GPU found (platforms: " + platformList() + ")";
+  } catch (const Error& e) {
+    why = "OpenCL failed to start (" + firstLine(e.what()) + ")";
+  }
+  if (note) *note = why + "; using the OpenMP CPU backend";
+  return std::make_unique<CpuBackend>(threads);
+#endif
+}
+
+}  // namespace ff

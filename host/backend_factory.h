@@ -1,0 +1,20 @@
+// backend_factory.h - picks the backend for a run: `auto` (an OpenCL GPU when
+// there is one, else the OpenMP CPU backend), `cpu` or `opencl`.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "core/backend.h"
+
+namespace ff {
+
+// kind: "auto", "cpu" or "opencl". device: index in `flowform devices` order,
+// -1 = choose (opencl: the first GPU, else the first device). threads: OpenMP
+// threads for the CPU backend (0 = OpenMP's default).
+// `auto` falls back to the CPU backend when there is no OpenCL GPU, or when
+// OpenCL is missing or fails to start, and says why in one line via *note
+// (left empty when nothing needs saying). `opencl` throws ff::Error with that
+// explanation instead; so does an unknown kind or a --device that cannot be used.
+std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note);
+
+}  // namespace ff

@@ -1,0 +1,264 @@
+#include "host/backend_opencl.h"
+
+#include "host/backend_opencl_impl.h"
+#include "host/cl_errors.h"
+
+namespace ff {
+
+OpenClBackend::Impl::Impl(int device_index)
+    : ctx(device_index), program(buildKernelProgram(ctx, embeddedKernelFiles())), grids(ctx, program) {
+  reorder = makeKernel(program, "grid_reorder_fluid", ctx);
+  density = makeKernel(program, "density", ctx);
+  forces = makeKernel(program, "forces", ctx);
+  integrate = makeKernel(program, "integrate", ctx);
+  control_scale = makeKernel(program, "control_scale", ctx);
+  control_gather = makeKernel(program, "control_gather", ctx);
+  control_forces = makeKernel(program, "control_forces", ctx);
+  sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
+  sm_particles = makeKernel(program, "sm_particles", ctx);
+  m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 4 * sizeof(float));
+  m_coverage = makeKernel(program, "metrics_coverage", ctx, 256, sizeof(float));
+  m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
+  m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));
+  m_iou = makeKernel(program, "metrics_iou", ctx, 256, 2 * sizeof(cl_uint));
+  for (DeviceBuffer& f : flag) {
+    f.ensure(ctx.context(), sizeof(cl_int));
+    fillBuffer(ctx.queue(), f, cl_int(0), 1);
+  }
+}
+
+OpenClBackend::OpenClBackend(int device_index)
+    : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })) {}
+
+OpenClBackend::~OpenClBackend() = default;
+
+std::string OpenClBackend::device() const {
+  return "OpenCL: " + d_->ctx.info().summary();
+}
+
+const ClDeviceInfo& OpenClBackend::deviceInfo() const {
+  return d_->ctx.info();
+}
+
+void OpenClBackend::beginPhase(Phase p) {
+  fillBuffer(d_->queue(), d_->flag[size_t(p)], cl_int(0), 1);
+}
+
+void OpenClBackend::init(const Params& params, const ContainerDesc& box, const FluidState& fluid) {
+  clGuard("init", [&] {
+    Impl& d = *d_;
+    const cl::Context& c = d.ctx.context();
+    cl::CommandQueue& q = d.queue();
+    box_ = box;
+    n_ = fluid.size();
+    d.cur = 0;
+    upload(q, c, d.x[0], fluid.x), upload(q, c, d.y[0], fluid.y), upload(q, c, d.z[0], fluid.z);
+    upload(q, c, d.vx[0], fluid.vx), upload(q, c, d.vy[0], fluid.vy), upload(q, c, d.vz[0], fluid.vz);
+    upload(q, c, d.id[0], fluid.id);
+    for (DeviceBuffer* b : {&d.x[1], &d.y[1], &d.z[1], &d.vx[1], &d.vy[1], &d.vz[1], &d.id[1], &d.rho, &d.p,
+                            &d.ax, &d.ay, &d.az})
+      b->ensure(c, n_ * sizeof(float));
+    fillBuffer(q, d.rho, params.fluid.rest_density, n_);
+    for (DeviceBuffer* b : {&d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, n_);
+    setParams(params);
+    grid_state_ = GridState::Stale;
+    bbox_valid_ = false;
+    q.finish();
+  });
+}
+
+void OpenClBackend::setParams(const Params& params) {
+  if (params.fluid.smoothing_radius != params_.fluid.smoothing_radius) grid_state_ = GridState::Stale;
+  params_ = params;
+}
+
+void OpenClBackend::setControl(ControlSet set) {
+  control_ = std::move(set);
+  nc_ = control_.size();
+  nclusters_ = control_.clusters.count();
+  clock_ = 0.0;
+  frame_ = RigidFrame();
+  frame_.rest_c[0] = control_.rest_cx, frame_.rest_c[1] = control_.rest_cy,
+  frame_.rest_c[2] = control_.rest_cz;
+  if (nc_ > 0) clGuard("uploading the control particles", [&] { uploadControl(); });
+}
+
+void OpenClBackend::uploadControl() {
+  Impl& d = *d_;
+  const cl::Context& c = d.ctx.context();
+  cl::CommandQueue& q = d.queue();
+  const ControlSet& s = control_;
+  upload(q, c, d.cx, s.x), upload(q, c, d.cy, s.y), upload(q, c, d.cz, s.z);
+  upload(q, c, d.cvx, s.vx), upload(q, c, d.cvy, s.vy), upload(q, c, d.cvz, s.vz);
+  upload(q, c, d.x0, s.x0), upload(q, c, d.y0, s.y0), upload(q, c, d.z0, s.z0);
+  upload(q, c, d.gx, s.x), upload(q, c, d.gy, s.y), upload(q, c, d.gz, s.z);  // as Controller::reset
+  for (DeviceBuffer* b : {&d.s, &d.ux, &d.uy, &d.uz, &d.sx, &d.sy, &d.sz, &d.ss, &d.svx, &d.svy, &d.svz})
+    b->ensure(c, nc_ * sizeof(float));
+  fillBuffer(q, d.s, 1.0f, nc_);
+  for (DeviceBuffer* b : {&d.ux, &d.uy, &d.uz}) fillBuffer(q, *b, 0.0f, nc_);
+  const Clusters& cl = s.clusters;
+  upload(q, c, d.cl_start, cl.start), upload(q, c, d.cl_members, cl.members);
+  upload(q, c, d.rest_cx, cl.rest_cx), upload(q, c, d.rest_cy, cl.rest_cy),
+      upload(q, c, d.rest_cz, cl.rest_cz);
+  upload(q, c, d.of_start, cl.of_start), upload(q, c, d.of, cl.of);
+  const std::vector<ff_quat> identity(nclusters_, FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
+  upload(q, c, d.q, identity);
+  for (DeviceBuffer* b : {&d.com_x, &d.com_y, &d.com_z, &d.ccv_x, &d.ccv_y, &d.ccv_z})
+    b->ensure(c, nclusters_ * sizeof(float));
+  q.finish();  // `identity` must outlive the non-blocking writes
+}
+
+void OpenClBackend::setMetricsTarget(const TargetShape* target) {
+  target_ = target;
+  if (!target) return;
+  clGuard("uploading the metrics target", [&] {
+    upload(d_->queue(), d_->ctx.context(), d_->inside, target->grid.inside);
+    d_->queue().finish();
+  });
+}
+
+void OpenClBackend::fluidGridBounds(float lo[3], float hi[3]) {
+  if (!bbox_valid_) {
+    d_->grids.bbox(d_->X(), d_->Y(), d_->Z(), n_, bbox_lo_, bbox_hi_);
+    bbox_valid_ = true;
+  }
+  for (int k = 0; k < 3; ++k) lo[k] = bbox_lo_[k], hi[k] = bbox_hi_[k];
+}
+
+void OpenClBackend::buildGrid() {
+  clGuard("phase 'grid'", [&] {
+    Impl& d = *d_;
+    beginPhase(Phase::Grid);
+    if (n_ == 0) return;
+    if (grid_state_ != GridState::Index) {
+      float lo[3], hi[3];
+      fluidGridBounds(lo, hi);
+      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, params_.fluid.smoothing_radius, lo, hi);
+    }
+    const int o = 1 - d.cur;
+    launch(d.queue(), d.reorder, n_, d.fluid_h.order.get(), cl_uint(n_), d.X(), d.Y(), d.Z(), d.VX(), d.VY(),
+           d.VZ(), d.id[d.cur].get(), d.x[o].get(), d.y[o].get(), d.z[o].get(), d.vx[o].get(), d.vy[o].get(),
+           d.vz[o].get(), d.id[o].get());
+    d.cur = o;
+    grid_state_ = GridState::Sorted;
+    d.queue().finish();
+  });
+}
+
+void OpenClBackend::computeDensity() {
+  clGuard("phase 'density'", [&] {
+    Impl& d = *d_;
+    beginPhase(Phase::Density);
+    const FluidParams& f = params_.fluid;
+    launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), d.fluid_h.start.get(),
+           d.fluid_h.geom.geo(), d.fluid_h.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density,
+           f.gas_constant, boxLo(box_), boxHi(box_), d.rho.get(), d.p.get(), d.flagOf(Phase::Density));
+    d.queue().finish();
+  });
+}
+
+void OpenClBackend::computeForces() {
+  clGuard("phase 'forces'", [&] {
+    Impl& d = *d_;
+    beginPhase(Phase::Forces);
+    const FluidParams& f = params_.fluid;
+    launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), d.p.get(),
+           cl_uint(n_), d.fluid_h.start.get(), d.fluid_h.geom.geo(), d.fluid_h.geom.dims(),
+           f.smoothing_radius, f.particle_mass, f.viscosity,
+           f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f), boxLo(box_), boxHi(box_), d.ax.get(),
+           d.ay.get(), d.az.get(), d.flagOf(Phase::Forces));
+    d.queue().finish();
+  });
+}
+
+void OpenClBackend::integrate(float dt) {
+  clGuard("phase 'integrate'", [&] {
+    Impl& d = *d_;
+    beginPhase(Phase::Integrate);
+    const FluidParams& f = params_.fluid;
+    const float vmax = f.max_step_fraction * f.smoothing_radius / dt;
+    const float eps = 1e-6f * f.smoothing_radius;
+    launch(d.queue(), d.integrate, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.ax.get(), d.ay.get(),
+           d.az.get(), cl_uint(n_), dt, vmax, eps, boxLo(box_), boxHi(box_), d.flagOf(Phase::Integrate));
+    grid_state_ = GridState::Stale;
+    bbox_valid_ = false;
+    d.queue().finish();
+  });
+}
+
+bool OpenClBackend::finiteAfter(Phase phase) {
+  if (phase == Phase::Grid || phase == Phase::Metrics || phase == Phase::Count) return true;
+  return clGuard(std::string("checking phase '") + phaseName(phase) + "' for NaN", [&] {
+    cl_int bad = 0;
+    d_->queue().enqueueReadBuffer(d_->flagOf(phase), CL_TRUE, 0, sizeof(cl_int), &bad);
+    return bad == 0;
+  });
+}
+
+void OpenClBackend::readFluid(FluidState& out) {
+  clGuard("reading the fluid", [&] {
+    Impl& d = *d_;
+    cl::CommandQueue& q = d.queue();
+    download(q, d.x[d.cur], n_, out.x), download(q, d.y[d.cur], n_, out.y),
+        download(q, d.z[d.cur], n_, out.z);
+    download(q, d.vx[d.cur], n_, out.vx), download(q, d.vy[d.cur], n_, out.vy);
+    download(q, d.vz[d.cur], n_, out.vz), download(q, d.id[d.cur], n_, out.id);
+  });
+}
+
+void OpenClBackend::readDensity(std::vector<float>& rho, std::vector<float>& pressure) {
+  clGuard("reading the density", [&] {
+    download(d_->queue(), d_->rho, n_, rho);
+    download(d_->queue(), d_->p, n_, pressure);
+  });
+}
+
+void OpenClBackend::readAccel(std::vector<float>& ax, std::vector<float>& ay, std::vector<float>& az) {
+  clGuard("reading the accelerations", [&] {
+    download(d_->queue(), d_->ax, n_, ax), download(d_->queue(), d_->ay, n_, ay);
+    download(d_->queue(), d_->az, n_, az);
+  });
+}
+
+void OpenClBackend::readControl(ControlSet& set, ControlFields& fields) {
+  clGuard("reading the control particles", [&] {
+    Impl& d = *d_;
+    cl::CommandQueue& q = d.queue();
+    if (nc_ > 0) {
+      download(q, d.cx, nc_, control_.x), download(q, d.cy, nc_, control_.y),
+          download(q, d.cz, nc_, control_.z);
+      download(q, d.cvx, nc_, control_.vx), download(q, d.cvy, nc_, control_.vy);
+      download(q, d.cvz, nc_, control_.vz);
+    }
+    set = control_;
+    download(q, d.s, nc_, fields.s), download(q, d.ux, nc_, fields.ux), download(q, d.uy, nc_, fields.uy);
+    download(q, d.uz, nc_, fields.uz);
+  });
+}
+
+void OpenClBackend::readGoals(std::vector<float>& gx, std::vector<float>& gy, std::vector<float>& gz) {
+  clGuard("reading the goals", [&] {
+    download(d_->queue(), d_->gx, nc_, gx), download(d_->queue(), d_->gy, nc_, gy);
+    download(d_->queue(), d_->gz, nc_, gz);
+  });
+}
+
+void OpenClBackend::readClusterRotations(std::vector<ff_quat>& q) {
+  clGuard("reading the cluster rotations", [&] { download(d_->queue(), d_->q, nclusters_, q); });
+}
+
+OpenClBackend::GridSnapshot OpenClBackend::readGrid(GridKind kind) {
+  return clGuard("reading a grid", [&] {
+    const DeviceGrid& g = kind == GridKind::Fluid
+                              ? d_->fluid_h
+                              : (kind == GridKind::FluidControl ? d_->fluid_r : d_->control_r);
+    GridSnapshot s;
+    s.geom = g.geom;
+    if (g.start.capacity() == 0) return s;  // never built
+    download(d_->queue(), g.start, g.geom.cells() + 1, s.start);
+    download(d_->queue(), g.order, g.n, s.order);
+    return s;
+  });
+}
+
+}  // namespace ff

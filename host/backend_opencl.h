@@ -1,0 +1,93 @@
+// backend_opencl.h - the OpenCL backend: every phase as kernels on one device
+// (kernels/*.cl, built at start from the sources embedded in the binary).
+// The particle data stays on the device for the whole run; it crosses to the
+// host only for readFluid / readControl / readDensity, the metrics' partial
+// sums, the grids' bounding boxes (6 floats) and the finite-value flags.
+//
+// Each phase mirrors the OpenMP backend's arithmetic and summation order
+// (src/cpu/, src/control/, src/metrics/), with the shared formulas of
+// kernels/common/, so both give the same numbers up to rounding.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "ff_rotation.h"
+#include "host/cl_context.h"
+#include "host/cl_kernel.h"
+#include "host/device_grid.h"
+#include "metrics/iou.h"
+
+namespace ff {
+
+class OpenClBackend : public Backend {
+ public:
+  // device_index: position in listClDevices() order; < 0: the first GPU, else
+  // the first device. Throws ff::Error (no platform, bad index, build log).
+  explicit OpenClBackend(int device_index = -1);
+  ~OpenClBackend() override;
+  std::string name() const override { return "opencl"; }
+  std::string device() const override;
+
+  void init(const Params& params, const ContainerDesc& box, const FluidState& fluid) override;
+  void setParams(const Params& params) override;
+  void setControl(ControlSet set) override;
+  void setMetricsTarget(const TargetShape* target) override;
+
+  void buildGrid() override;
+  void computeDensity() override;
+  void computeForces() override;
+  void computeControlScale() override;
+  void applyControlForces(float dt) override;
+  void integrate(float dt) override;
+  int shapeMatching(float dt) override;
+  StepMetrics computeMetrics() override;
+  bool finiteAfter(Phase phase) override;
+
+  void readFluid(FluidState& out) override;
+  void readDensity(std::vector<float>& rho, std::vector<float>& pressure) override;
+  void readControl(ControlSet& set, ControlFields& fields) override;
+
+  // For tests and tools.
+  const ClDeviceInfo& deviceInfo() const;
+  void readAccel(std::vector<float>& ax, std::vector<float>& ay, std::vector<float>& az);
+  void readGoals(std::vector<float>& gx, std::vector<float>& gy, std::vector<float>& gz);
+  void readClusterRotations(std::vector<ff_quat>& q);
+  enum class GridKind {
+    Fluid,
+    FluidControl,
+    Control
+  };  // cell h (sorted fluid), control radius (fluid, control)
+  struct GridSnapshot {
+    GridGeom geom;
+    std::vector<uint32_t> start, order;
+  };
+  GridSnapshot readGrid(GridKind kind);
+  double shapeMatchingClock() const { return clock_; }
+
+ private:
+  struct Impl;  // device buffers and kernels
+  void fluidGridBounds(float lo[3], float hi[3]);
+  void beginPhase(Phase p);
+  void runShapeMatchStep();
+  void uploadControl();
+
+  std::unique_ptr<Impl> d_;
+  Params params_;
+  ContainerDesc box_;
+  size_t n_ = 0;        // fluid particles
+  ControlSet control_;  // rest shape and clusters; positions and velocities live on the device
+  size_t nc_ = 0, nclusters_ = 0;
+  double clock_ = 0.0;  // shape-matching time not yet consumed
+  const TargetShape* target_ = nullptr;
+  RigidFrame frame_;
+  // The fluid h-grid: Stale after the positions change; Index when built over
+  // the current positions without reordering (by the metrics, reused by the
+  // next buildGrid); Sorted after buildGrid reordered the arrays by it.
+  enum class GridState { Stale, Index, Sorted } grid_state_ = GridState::Stale;
+  bool bbox_valid_ = false;  // bbox_lo_/hi_ hold the current fluid positions' bounding box
+  float bbox_lo_[3] = {0, 0, 0}, bbox_hi_[3] = {0, 0, 0};
+};
+
+}  // namespace ff

@@ -1,0 +1,68 @@
+// backend_opencl_impl.h - the OpenCL backend's device state: context,
+// program, kernels and buffers (shared by the backend_opencl*.cpp files).
+#pragma once
+#include <vector>
+
+#include "core/backend.h"
+#include "host/backend_opencl.h"
+#include "host/cl_context.h"
+#include "host/cl_kernel.h"
+#include "host/cl_program.h"
+#include "host/device_grid.h"
+
+namespace ff {
+
+struct OpenClBackend::Impl {
+  explicit Impl(int device_index);
+
+  ClContext ctx;
+  cl::Program program;
+  GridBuilder grids;
+  ClKernel reorder, density, forces, integrate;
+  ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
+  ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou;
+
+  // Fluid, double-buffered for the reorder: [cur] holds the current state.
+  DeviceBuffer x[2], y[2], z[2], vx[2], vy[2], vz[2], id[2];
+  int cur = 0;
+  DeviceBuffer rho, p, ax, ay, az;
+  DeviceGrid fluid_h;    // cell h over the fluid (sorts it; also the metrics' index grid)
+  DeviceGrid fluid_r;    // cell = control radius over the fluid (index grid, control scale)
+  DeviceGrid control_r;  // cell = control radius over the control particles (control forces)
+
+  // Control particles (fixed order) and their per-step fields.
+  DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
+  DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
+  // Clusters (CSR both ways) and their per-step frames.
+  DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
+  DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;
+
+  DeviceBuffer inside;  // the metrics target's voxels (uchar)
+  DeviceBuffer partial;
+  std::vector<float> partial_host;
+  std::vector<cl_uint> partial_uint;
+  DeviceBuffer flag[size_t(Phase::Count)];  // set to 1 by a kernel that wrote a NaN or Inf
+
+  const cl::Buffer& X() const { return x[cur].get(); }
+  const cl::Buffer& Y() const { return y[cur].get(); }
+  const cl::Buffer& Z() const { return z[cur].get(); }
+  const cl::Buffer& VX() const { return vx[cur].get(); }
+  const cl::Buffer& VY() const { return vy[cur].get(); }
+  const cl::Buffer& VZ() const { return vz[cur].get(); }
+  const cl::Buffer& flagOf(Phase ph) const { return flag[size_t(ph)].get(); }
+  cl::CommandQueue& queue() { return ctx.queue(); }
+  // Work-groups for a reduction over n items: at most 64, so the host sums few partials.
+  static size_t reduceGroups(size_t n, size_t local) {
+    size_t g = (n + local - 1) / local;
+    return g < 1 ? 1 : (g > 64 ? 64 : g);
+  }
+};
+
+inline cl_float4 boxLo(const ContainerDesc& b) {
+  return f4(b.min.x(), b.min.y(), b.min.z(), 0.0f);
+}
+inline cl_float4 boxHi(const ContainerDesc& b) {
+  return f4(b.max.x(), b.max.y(), b.max.z(), 0.0f);
+}
+
+}  // namespace ff

@@ -1,0 +1,106 @@
+// backend_opencl_metrics.cpp - phase "metrics" of the OpenCL backend: the
+// device reduces to per-group partials, the host adds those up in double
+// precision (as CpuBackend::computeMetrics, src/metrics/iou.cpp).
+#include <algorithm>
+#include <cmath>
+
+#include "host/backend_opencl.h"
+#include "host/backend_opencl_impl.h"
+#include "host/cl_errors.h"
+
+namespace ff {
+
+namespace {
+
+// Sums (or, for the columns in max_mask, takes the max of) `groups` partials of `width` floats.
+std::vector<double> finish(const std::vector<float>& partial, size_t groups, size_t width,
+                           unsigned max_mask) {
+  std::vector<double> out(width, 0.0);
+  for (size_t g = 0; g < groups; ++g)
+    for (size_t k = 0; k < width; ++k) {
+      const double v = partial[g * width + k];
+      out[k] = ((max_mask >> k) & 1u) ? std::max(out[k], v) : out[k] + v;
+    }
+  return out;
+}
+
+}  // namespace
+
+StepMetrics OpenClBackend::computeMetrics() {
+  return clGuard("phase 'metrics'", [&] {
+    Impl& d = *d_;
+    cl::CommandQueue& q = d.queue();
+    const cl::Context& c = d.ctx.context();
+    StepMetrics m;
+    const float rho0 = params_.fluid.rest_density, mass = params_.fluid.particle_mass;
+    // Reduces n items with kernel k (width floats per item), returns the finished sums.
+    auto reduce = [&](ClKernel& k, size_t n, size_t width, unsigned max_mask, auto&&... args) {
+      const size_t local = k.pow2_local, groups = Impl::reduceGroups(n, local);
+      d.partial.ensure(c, groups * width * sizeof(float));
+      launchGroups(q, k, groups, local, args..., d.partial.get(), cl::Local(local * width * sizeof(float)));
+      d.partial_host.resize(groups * width);
+      q.enqueueReadBuffer(d.partial.get(), CL_TRUE, 0, groups * width * sizeof(float), d.partial_host.data());
+      return finish(d.partial_host, groups, width, max_mask);
+    };
+    if (n_ > 0) {
+      const std::vector<double> f = reduce(d.m_fluid, n_, 4, (1u << 2) | (1u << 3), d.rho.get(), d.VX(),
+                                           d.VY(), d.VZ(), cl_uint(n_), rho0);
+      m.density_error = f[0] / double(n_);
+      m.kinetic_energy = 0.5 * double(mass) * f[1];
+      m.max_speed = std::sqrt(f[2]);
+      m.max_density = f[3];
+    }
+    if (nc_ == 0) return m;
+    m.coverage = reduce(d.m_coverage, nc_, 1, 0u, d.s.get(), cl_uint(nc_))[0] / double(nc_);
+    m.control_count = long(nc_);
+    if (!target_ || n_ == 0) return m;
+
+    // bestFitFrame: centre of mass, A_pq about it, rotation warm-started from the last frame.
+    const std::vector<double> sum =
+        reduce(d.m_com, nc_, 3, 0u, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_));
+    const float com[3] = {float(sum[0] / double(nc_)), float(sum[1] / double(nc_)),
+                          float(sum[2] / double(nc_))};
+    const std::vector<double> a =
+        reduce(d.m_apq, nc_, 9, 0u, d.cx.get(), d.cy.get(), d.cz.get(), d.x0.get(), d.y0.get(), d.z0.get(),
+               cl_uint(nc_), f4(com[0], com[1], com[2], 0.0f),
+               f4(frame_.rest_c[0], frame_.rest_c[1], frame_.rest_c[2], 0.0f));
+    ff_mat3 apq;
+    apq.c0 = FF_F3(float(a[0]), float(a[1]), float(a[2]));
+    apq.c1 = FF_F3(float(a[3]), float(a[4]), float(a[5]));
+    apq.c2 = FF_F3(float(a[6]), float(a[7]), float(a[8]));
+    frame_.q = ff_extract_rotation(apq, frame_.q, params_.shape.rotation_iterations * 4);
+    for (int k = 0; k < 3; ++k) frame_.c[k] = com[k];
+
+    // The fluid's index grid (cell h) over the current positions; the next
+    // buildGrid sorts by it instead of building it again.
+    const float h = params_.fluid.smoothing_radius;
+    if (grid_state_ != GridState::Index) {
+      float lo[3], hi[3];
+      fluidGridBounds(lo, hi);
+      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, h, lo, hi);
+      grid_state_ = GridState::Index;
+    }
+    const VoxelGrid& g = target_->grid;
+    const int pad = 2;
+    const size_t total = size_t(g.nx + 2 * pad) * size_t(g.ny + 2 * pad) * size_t(g.nz + 2 * pad);
+    const ff_mat3 r = ff_quat_to_mat3(frame_.q);
+    const size_t local = d.m_iou.pow2_local, groups = Impl::reduceGroups(total, local);
+    d.partial.ensure(c, groups * 2 * sizeof(cl_uint));
+    launchGroups(q, d.m_iou, groups, local, d.inside.get(), i4(g.nx, g.ny, g.nz, pad),
+                 f4(g.origin.x(), g.origin.y(), g.origin.z(), g.voxel), f4(r.c0.x, r.c0.y, r.c0.z, 0.0f),
+                 f4(r.c1.x, r.c1.y, r.c1.z, 0.0f), f4(r.c2.x, r.c2.y, r.c2.z, 0.0f),
+                 f4(frame_.c[0], frame_.c[1], frame_.c[2], 0.0f),
+                 f4(frame_.rest_c[0], frame_.rest_c[1], frame_.rest_c[2], 0.0f), d.X(), d.Y(), d.Z(),
+                 d.fluid_h.order.get(), d.fluid_h.start.get(), d.fluid_h.geom.geo(), d.fluid_h.geom.dims(), h,
+                 mass, 0.5f * rho0, d.partial.get(), cl::Local(local * 2 * sizeof(cl_uint)));
+    d.partial_uint.resize(groups * 2);
+    q.enqueueReadBuffer(d.partial.get(), CL_TRUE, 0, groups * 2 * sizeof(cl_uint), d.partial_uint.data());
+    long inter = 0, uni = 0;
+    for (size_t k = 0; k < groups; ++k)
+      inter += long(d.partial_uint[2 * k]), uni += long(d.partial_uint[2 * k + 1]);
+    m.iou = uni > 0 ? double(inter) / double(uni) : 0.0;
+    return m;
+  });
+}
+
+}  // namespace ff

@@ -1,0 +1,118 @@
+#include "host/cl_program.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "core/embedded.h"
+#include "core/error.h"
+#include "host/cl_errors.h"
+
+namespace ff {
+
+namespace {
+
+const char* kKernelDir = "kernels/";
+const char* kCommonDir = "kernels/common/";
+
+bool startsWith(const std::string& s, const std::string& p) {
+  return s.compare(0, p.size(), p) == 0;
+}
+bool endsWith(const std::string& s, const std::string& p) {
+  return s.size() >= p.size() && s.compare(s.size() - p.size(), p.size(), p) == 0;
+}
+
+bool isEmbedded(const std::string& name) {
+  for (const EmbeddedFile* f = resources_files(); f->name; ++f)
+    if (name == f->name) return true;
+  return false;
+}
+
+// If `line` is `#include "name"` (spaces allowed), returns true and the name.
+bool includeName(const std::string& line, std::string& name) {
+  size_t i = line.find_first_not_of(" \t");
+  if (i == std::string::npos || line[i] != '#') return false;
+  i = line.find_first_not_of(" \t", i + 1);
+  if (i == std::string::npos || line.compare(i, 7, "include") != 0) return false;
+  const size_t q0 = line.find('"', i + 7);
+  const size_t q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+  if (q1 == std::string::npos) return false;
+  name = line.substr(q0 + 1, q1 - q0 - 1);
+  return true;
+}
+
+void resolveInto(const std::string& file, std::set<std::string>& included, std::ostringstream& out,
+                 int depth) {
+  if (depth > 16) throw Error(file + ": #include nesting deeper than 16 (a cycle?)");
+  const std::string text = embeddedFile(file);
+  std::istringstream in(text);
+  std::string line;
+  int number = 0;
+  out << "#line 1 \"" << file << "\"\n";
+  while (std::getline(in, line)) {
+    ++number;
+    std::string name;
+    if (!includeName(line, name)) {
+      out << line << '\n';
+      continue;
+    }
+    const std::string header = kCommonDir + name;
+    if (!isEmbedded(header))
+      throw Error(file + ":" + std::to_string(number) + ": #include \"" + name + "\": no embedded header '" +
+                  header + "' (kernels/common/*.h are embedded at build time)");
+    if (included.insert(header).second) resolveInto(header, included, out, depth + 1);
+    out << "#line " << number + 1 << " \"" << file << "\"\n";
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> embeddedKernelFiles() {
+  std::vector<std::string> out;
+  for (const EmbeddedFile* f = resources_files(); f->name; ++f) {
+    const std::string n = f->name;
+    if (startsWith(n, kKernelDir) && !startsWith(n, kCommonDir) && endsWith(n, ".cl")) out.push_back(n);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string resolveKernelSource(const std::string& file, std::set<std::string>& included) {
+  std::ostringstream out;
+  resolveInto(file, included, out, 0);
+  return out.str();
+}
+
+std::string kernelBuildOptions(const ClDeviceInfo& info) {
+  std::string opt = "-cl-std=CL1.2";
+  if (info.correctly_rounded_div_sqrt) opt += " -cl-fp32-correctly-rounded-divide-sqrt";
+  return opt;
+}
+
+cl::Program buildKernelProgram(const ClContext& cl, const std::vector<std::string>& files) {
+  std::set<std::string> included;
+  std::string source;
+  for (const std::string& f : files) source += resolveKernelSource(f, included);
+  return buildProgramSource(cl, source);
+}
+
+cl::Program buildProgramSource(const ClContext& cl, const std::string& source) {
+  cl::Program program =
+      clGuard("creating the kernel program", [&] { return cl::Program(cl.context(), source); });
+  const std::string options = kernelBuildOptions(cl.info());
+  try {
+    program.build(std::vector<cl::Device>{cl.device()}, options.c_str());
+  } catch (const cl::Error& e) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(cl.device());
+    } catch (const cl::Error&) {
+      log = "(the device gave no build log)";
+    }
+    while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
+    throw Error("OpenCL: building the kernels for " + cl.info().name + " with \"" + options +
+                "\": " + clErrorText(e.what(), e.err()) + "; build log:\n" + log);
+  }
+  return program;
+}
+
+}  // namespace ff

@@ -1,0 +1,36 @@
+// cl_program.h - the kernels' OpenCL C source from the files embedded in the
+// binary (kernels/*.cl, with `#include "ff_xxx.h"` resolved against the
+// embedded kernels/common/ headers), and the program build with its log.
+#pragma once
+#include <CL/opencl.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "host/cl_context.h"
+
+namespace ff {
+
+// The names of every embedded kernels/*.cl file, sorted.
+std::vector<std::string> embeddedKernelFiles();
+
+// The source of one embedded file with each `#include "name"` line replaced by
+// the embedded kernels/common/name (recursively; a header already in
+// `included` is left out, its include guard would skip it anyway). #line
+// directives keep the build log's file names and line numbers right.
+// Throws ff::Error naming the file and line of an include it cannot find.
+std::string resolveKernelSource(const std::string& file, std::set<std::string>& included);
+
+// The build options for a device: OpenCL C 1.2, and correctly rounded
+// division and sqrt where the device has them, so that the kernels' float
+// arithmetic matches the CPU backend's.
+std::string kernelBuildOptions(const ClDeviceInfo& info);
+
+// Builds one program from the given embedded .cl files (in order). A build
+// failure throws ff::Error with the device's build log.
+cl::Program buildKernelProgram(const ClContext& cl, const std::vector<std::string>& files);
+
+// Builds a program from OpenCL C source text, as buildKernelProgram does.
+cl::Program buildProgramSource(const ClContext& cl, const std::string& source);
+
+}  // namespace ff

@@ -1,0 +1,82 @@
+#include "host/device_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ff {
+
+GridGeom gridGeometry(const float lo[3], const float hi[3], float cell, size_t max_cells) {
+  GridGeom g;
+  g.cell = cell;
+  auto dims = [&](float c, int d) { return int(std::floor((hi[d] - lo[d]) / c)) + 3; };
+  while (true) {
+    g.nx = dims(g.cell, 0), g.ny = dims(g.cell, 1), g.nz = dims(g.cell, 2);
+    if (size_t(g.nx) * g.ny * g.nz <= max_cells) break;
+    g.cell *= 1.25f;
+  }
+  g.inv_cell = 1.0f / g.cell;
+  g.ox = lo[0] - g.cell, g.oy = lo[1] - g.cell, g.oz = lo[2] - g.cell;
+  return g;
+}
+
+GridBuilder::GridBuilder(ClContext& cl, const cl::Program& program) : cl_(cl) {
+  bbox_ = makeKernel(program, "grid_bbox", cl, 256, 6 * sizeof(float));
+  count_ = makeKernel(program, "grid_count", cl);
+  scan_block_ = makeKernel(program, "scan_block", cl, 256, sizeof(cl_uint));
+  scan_add_ = makeKernel(program, "scan_add", cl);
+  scatter_ = makeKernel(program, "grid_scatter", cl);
+  rank_ = makeKernel(program, "grid_rank", cl);
+  scan_local_ = std::min(scan_block_.pow2_local, scan_add_.pow2_local);
+}
+
+void GridBuilder::bbox(const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z, size_t n, float lo[3],
+                       float hi[3]) {
+  const size_t local = bbox_.pow2_local;
+  const size_t groups = std::max<size_t>(1, std::min<size_t>((n + local - 1) / local, 64));
+  bbox_partial_.ensure(cl_.context(), groups * 6 * sizeof(float));
+  launchGroups(cl_.queue(), bbox_, groups, local, x, y, z, cl_uint(n), bbox_partial_.get(),
+               cl::Local(local * 6 * sizeof(float)));
+  bbox_host_.resize(groups * 6);
+  cl_.queue().enqueueReadBuffer(bbox_partial_.get(), CL_TRUE, 0, groups * 6 * sizeof(float),
+                                bbox_host_.data());
+  for (int d = 0; d < 3; ++d) lo[d] = bbox_host_[size_t(d)], hi[d] = bbox_host_[size_t(3 + d)];
+  for (size_t g = 1; g < groups; ++g)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], bbox_host_[6 * g + size_t(d)]);
+      hi[d] = std::max(hi[d], bbox_host_[6 * g + size_t(3 + d)]);
+    }
+}
+
+void GridBuilder::scan(cl::Buffer data, size_t m, size_t level) {
+  const size_t local = scan_local_, blocks = (m + local - 1) / local;
+  if (scan_sums_.size() <= level) scan_sums_.resize(level + 1);
+  DeviceBuffer& sums = scan_sums_[level];
+  sums.ensure(cl_.context(), blocks * sizeof(cl_uint));
+  launchGroups(cl_.queue(), scan_block_, blocks, local, data, cl_uint(m), sums.get(),
+               cl::Local(local * sizeof(cl_uint)));
+  if (blocks > 1) {
+    scan(sums.get(), blocks, level + 1);
+    launchGroups(cl_.queue(), scan_add_, blocks, local, data, cl_uint(m), sums.get());
+  }
+}
+
+void GridBuilder::build(DeviceGrid& g, const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z,
+                        size_t n, float cell, const float lo[3], const float hi[3]) {
+  const float zero[3] = {0.0f, 0.0f, 0.0f};
+  g.geom = n > 0 ? gridGeometry(lo, hi, cell) : gridGeometry(zero, zero, cell);
+  g.n = n;
+  const size_t cells = g.geom.cells();
+  const cl::Context& ctx = cl_.context();
+  cl::CommandQueue& q = cl_.queue();
+  g.start.ensure(ctx, (cells + 1) * sizeof(cl_uint));
+  g.fill.ensure(ctx, cells * sizeof(cl_uint));
+  for (DeviceBuffer* b : {&g.order, &g.cell_of, &g.slots}) b->ensure(ctx, n * sizeof(cl_uint));
+  fillBuffer(q, g.start, cl_uint(0), cells + 1);
+  fillBuffer(q, g.fill, cl_uint(0), cells);
+  launch(q, count_, n, x, y, z, cl_uint(n), g.geom.geo(), g.geom.dims(), g.cell_of.get(), g.start.get());
+  scan(g.start.get(), cells + 1, 0);
+  launch(q, scatter_, n, g.cell_of.get(), cl_uint(n), g.start.get(), g.fill.get(), g.slots.get());
+  launch(q, rank_, n, g.cell_of.get(), cl_uint(n), g.start.get(), g.slots.get(), g.order.get());
+}
+
+}  // namespace ff

@@ -1,0 +1,67 @@
+// control_forces.cl - phase "control forces": on every fluid particle the
+// attraction of eq. 4, the velocity force of eq. 6 integrated implicitly, and
+// the share of gravity the control carries. Control particles are found
+// through their own grid (cell size = the control radius), gathered into cell
+// order first. Mirrors Controller::addForces in src/control/controller.cpp.
+#pragma OPENCL FP_CONTRACT OFF
+#include "ff_control.h"
+#include "ff_grid.h"
+#include "ff_sph.h"
+
+// Control particles (position, s, velocity) copied into their grid's order.
+__kernel void control_gather(__global const uint* order, uint nc, __global const float* x,
+                             __global const float* y, __global const float* z, __global const float* s,
+                             __global const float* vx, __global const float* vy, __global const float* vz,
+                             __global float* sx, __global float* sy, __global float* sz, __global float* ss,
+                             __global float* svx, __global float* svy, __global float* svz) {
+  const uint k = get_global_id(0);
+  if (k >= nc) return;
+  const uint i = order[k];
+  sx[k] = x[i], sy[k] = y[i], sz[k] = z[i], ss[k] = s[i];
+  svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
+}
+
+// per_density: divide by rho_e (force density); else multiply by unit_scale (1, or 1 / m for a force).
+// full_at = ff_control_full_coverage(cp_volume, radius, ff_poly6_coef(radius)), evaluated
+// once on the host (as the CPU backend does) so that both use the same cbrt.
+__kernel void control_forces(__global const float* x, __global const float* y, __global const float* z,
+                             __global const float* vx, __global const float* vy, __global const float* vz,
+                             __global const float* rho, uint n, __global const float* sx,
+                             __global const float* sy, __global const float* sz, __global const float* ss,
+                             __global const float* svx, __global const float* svy, __global const float* svz,
+                             __global const uint* start, float4 geo, int4 dims, float radius, float cp_volume,
+                             float full_at, float wa, float wv, float gc, int per_density, float unit_scale,
+                             float4 gravity, float dt, __global float* ax, __global float* ay,
+                             __global float* az, __global int* bad) {
+  const uint e = get_global_id(0);
+  if (e >= n) return;
+  const float r2 = radius * radius, coef = ff_poly6_coef(radius);
+  const float xe = x[e], ye = y[e], ze = z[e];
+  uint b[9], en[9];
+  ff_grid_ranges(start, ff_cell_coord(xe, geo.x, geo.w, dims.x), ff_cell_coord(ye, geo.y, geo.w, dims.y),
+                 ff_cell_coord(ze, geo.z, geo.w, dims.z), dims.x, dims.y, dims.z, b, en);
+  ff_float3 fa = FF_F3(0.0f, 0.0f, 0.0f);
+  float wsum = 0.0f, vsx = 0.0f, vsy = 0.0f, vsz = 0.0f;
+  for (int r = 0; r < 9; ++r)
+    for (uint k = b[r]; k < en[r]; ++k) {
+      const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
+      const float d2 = FF_DOT(d, d);
+      const float w = ff_poly6(d2, r2, coef);
+      if (w <= 0.0f) continue;
+      fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
+      wsum += w;
+      vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+    }
+  if (wsum <= 0.0f) return;
+  const float scale = per_density ? 1.0f / rho[e] : unit_scale;
+  const float kk = wv * wsum * scale;
+  fa = fa * (wa * scale);
+  // Gravity carried by the control (all of it inside the shape).
+  const float held = gc * ff_control_held(wsum, cp_volume, full_at);
+  fa = fa - FF_F3(gravity.x, gravity.y, gravity.z) * held;
+  const float rx = ax[e] + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
+  const float ry = ay[e] + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
+  const float rz = az[e] + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
+  ax[e] = rx, ay[e] = ry, az[e] = rz;
+  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) atomic_or(bad, 1);
+}

@@ -1,0 +1,107 @@
+// The flowform program as a user runs it: exit codes, one-line reasons for
+// bad input, the metrics CSV, the PLY export and the phase timings.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code = -1;
+  std::string out;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd =
+      std::string("FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' '") + FF_FLOWFORM_EXE + "' " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path tempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("flowform_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
+  fs::path d = tempDir("default");
+  Result r = run("run --backend cpu --steps 3 --metrics '" + (d / "m.csv").string() + "' --export '" +
+                 d.string() + "' --export-every 3");
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* phase : {"grid", "density", "forces", "control_scale", "control_forces", "integrate",
+                            "shape_matching", "metrics", "total"})
+    EXPECT_NE(r.out.find(phase), std::string::npos) << phase << "\n" << r.out;
+  std::ifstream csv(d / "m.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("step,time,iou,coverage,max_speed,density_error", 0), 0u) << header;
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 3);
+  EXPECT_TRUE(fs::exists(d / "fluid_00000.ply"));
+  EXPECT_TRUE(fs::exists(d / "fluid_00001.ply"));
+  EXPECT_TRUE(fs::exists(d / "control_00001.ply"));
+  fs::remove_all(d);
+}
+
+TEST(Cli, MissingSceneFileIsAOneLineError) {
+  Result r = run("run /nonexistent/scene.json --steps 1");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("/nonexistent/scene.json"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadSceneFieldNamesFileAndKey) {
+  fs::path d = tempDir("badscene");
+  write(d / "bad.json",
+        R"({"fluid": [{"origin": [0,0,0], "dims": [4,4,4]}], "params": {"fluid": {"viscosity": -1}}})");
+  Result r = run("run '" + (d / "bad.json").string() + "' --steps 1");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("bad.json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("params.fluid.viscosity"), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
+TEST(Cli, BrokenMeshNamesTheMeshFile) {
+  fs::path d = tempDir("badmesh");
+  write(d / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
+  write(d / "s.json", R"({"fluid": [{"origin": [0.1,0,0.1], "dims": [6,6,6]}], "target": "broken.obj"})");
+  Result r = run("run '" + (d / "s.json").string() + "' --steps 1");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("broken.obj"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+  fs::remove_all(d);
+}
+
+TEST(Cli, UnwritableExportFolderIsAnError) {
+  Result r = run("run --backend cpu --steps 1 --export /proc/flowform_cannot_write_here");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("/proc/flowform_cannot_write_here"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadOptionIsRejected) {
+  Result r = run("run --steps -5 --seconds 2");
+  EXPECT_NE(r.code, 0) << r.out;
+}
+
+}  // namespace

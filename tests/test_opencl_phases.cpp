@@ -1,0 +1,428 @@
+// The OpenCL backend phase by phase against the OpenMP backend (the
+// independent reference): the same input state goes through each phase on
+// both, and the outputs must agree - neighbour grids exactly, values to 1e-5.
+//
+// Error measure: |a - b| <= 1e-5 * max(|a|, scale), with `scale` the RMS of
+// the CPU field over all particles. Each value is a float sum of terms of the
+// field's typical size, so rounding differences are about 1e-7 of that size,
+// not of the value itself: a sum that cancels to nearly zero (a particle at
+// rest between its neighbours) keeps an absolute error of that order.
+// The kernels mirror the CPU's summation order, so in practice the two agree
+// far more closely (most fields bit for bit); the printed errors say how close.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/simulation.h"
+#include "cpu/backend_cpu.h"
+#include "cpu/uniform_grid.h"
+#include "ff_grid.h"
+#include "host/backend_factory.h"
+#include "host/backend_opencl.h"
+#include "host/cl_context.h"
+#include "host/cl_errors.h"
+#include "host/cl_program.h"
+
+namespace {
+
+constexpr double kTol = 1e-5;
+
+// The OpenCL backend on the default device (the first GPU, else the first
+// device: PoCL here). No OpenCL platform is a test failure, not a skip: PoCL
+// (pocl-opencl-icd) is a declared dependency that .ci/setup installs.
+std::unique_ptr<ff::OpenClBackend> openClBackend() {
+  try {
+    return std::make_unique<ff::OpenClBackend>(-1);
+  } catch (const ff::Error& e) {
+    ADD_FAILURE() << "the OpenCL backend did not start: " << e.what()
+                  << "\n(PoCL, package pocl-opencl-icd, is a declared dependency; .ci/setup installs it)";
+    return nullptr;
+  }
+}
+
+struct Err {
+  double max_rel = 0.0;   // max_i |a_i - b_i| / max(|a_i|, scale)
+  double norm_rel = 0.0;  // ||a - b||_2 / ||a||_2
+};
+
+Err compare(const std::vector<float>& a, const std::vector<float>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  Err e;
+  if (a.empty() || a.size() != b.size()) return e;
+  double ss = 0.0, dd = 0.0;
+  for (float v : a) ss += double(v) * v;
+  const double scale = std::sqrt(ss / double(a.size()));
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double d = std::fabs(double(a[i]) - double(b[i]));
+    dd += d * d;
+    e.max_rel = std::max(e.max_rel, d / std::max({std::fabs(double(a[i])), scale, 1e-30}));
+  }
+  e.norm_rel = ss > 0.0 ? std::sqrt(dd / ss) : std::sqrt(dd);
+  return e;
+}
+
+void expectClose(const char* what, const std::vector<float>& cpu, const std::vector<float>& ocl) {
+  const Err e = compare(cpu, ocl);
+  std::printf("  %-28s max rel %.3g   norm rel %.3g   (%zu values)\n", what, e.max_rel, e.norm_rel,
+              cpu.size());
+  EXPECT_LE(e.max_rel, kTol) << what;
+}
+
+void expectGridEqual(const char* what, const ff::UniformGrid& g, const ff::OpenClBackend::GridSnapshot& s,
+                     bool compare_order) {
+  EXPECT_EQ(g.nx(), s.geom.nx) << what;
+  EXPECT_EQ(g.ny(), s.geom.ny) << what;
+  EXPECT_EQ(g.nz(), s.geom.nz) << what;
+  EXPECT_EQ(g.originX(), s.geom.ox) << what;
+  EXPECT_EQ(g.originY(), s.geom.oy) << what;
+  EXPECT_EQ(g.originZ(), s.geom.oz) << what;
+  EXPECT_EQ(g.cellSize(), s.geom.cell) << what;
+  EXPECT_TRUE(g.cellStart() == s.start) << what << ": cell ranges differ";
+  if (compare_order) {
+    EXPECT_TRUE(g.order() == s.order) << what << ": sorted order differs";
+  }
+}
+
+// A small scene: ~3000 particles falling into a ~600-particle sphere target.
+ff::SceneDesc smallScene() {
+  ff::SceneDesc s;
+  s.source = "test";
+  s.container.min = ff::Vec3(0, 0, 0);
+  s.container.max = ff::Vec3(0.2f, 0.2f, 0.2f);
+  ff::FluidBlockDesc b;
+  b.origin = ff::Vec3(0.055f, 0.0f, 0.055f);
+  b.dims[0] = 14, b.dims[1] = 16, b.dims[2] = 14;  // 3136 particles
+  s.fluid.push_back(b);
+  ff::TargetSpec t;
+  t.kind = ff::TargetKind::Sphere;
+  t.control_count = 600;
+  s.schedule.push_back({0.0, t});
+  return s;
+}
+
+// Both backends start from the state of a CPU run after `steps` steps.
+struct Pair {
+  ff::SceneDesc scene;
+  std::unique_ptr<ff::Simulation> sim;  // owns the target
+  ff::CpuBackend cpu{2};
+  std::unique_ptr<ff::OpenClBackend> ocl;
+};
+
+std::unique_ptr<Pair> makePair(int steps) {
+  auto p = std::make_unique<Pair>();
+  p->ocl = openClBackend();
+  if (!p->ocl) return nullptr;
+  p->scene = smallScene();
+  p->sim = std::make_unique<ff::Simulation>(p->scene, std::make_unique<ff::CpuBackend>(2));
+  for (int i = 0; i < steps; ++i) p->sim->step();
+  ff::FluidState fluid;
+  ff::ControlSet control;
+  ff::ControlFields fields;
+  p->sim->backend().readFluid(fluid);
+  p->sim->backend().readControl(control, fields);
+  const ff::Params& params = p->sim->scene().params;
+  for (ff::Backend* b : {static_cast<ff::Backend*>(&p->cpu), static_cast<ff::Backend*>(p->ocl.get())}) {
+    b->init(params, p->scene.container, fluid);
+    b->setControl(control);
+    b->setMetricsTarget(p->sim->target());
+  }
+  return p;
+}
+
+TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
+  auto p = makePair(40);
+  ASSERT_TRUE(p);
+  ff::CpuBackend& cpu = p->cpu;
+  ff::OpenClBackend& ocl = *p->ocl;
+  const ff::Params& params = p->sim->scene().params;
+  const float dt = params.fluid.time_step;
+  std::printf("OpenCL device: %s\n", ocl.device().c_str());
+  ff::FluidState fc, fo;
+
+  // Grid: same dims, origin, cell ranges and sorted order (so the same neighbours in the same order).
+  cpu.buildGrid(), ocl.buildGrid();
+  expectGridEqual("fluid grid (cell h)", cpu.fluid().grid, ocl.readGrid(ff::OpenClBackend::GridKind::Fluid),
+                  false);
+  ocl.readFluid(fo);
+  fc = cpu.fluid().s;
+  EXPECT_TRUE(fc.id == fo.id) << "particles sorted into a different order";
+  EXPECT_TRUE(fc.x == fo.x && fc.y == fo.y && fc.z == fo.z && fc.vx == fo.vx) << "reorder changed values";
+
+  // Density and pressure.
+  cpu.computeDensity(), ocl.computeDensity();
+  ASSERT_TRUE(cpu.finiteAfter(ff::Phase::Density) && ocl.finiteAfter(ff::Phase::Density));
+  std::vector<float> rho, pr;
+  ocl.readDensity(rho, pr);
+  expectClose("density", cpu.fluid().rho, rho);
+  expectClose("pressure", cpu.fluid().p, pr);
+
+  // Pressure + viscosity + wall + gravity.
+  cpu.computeForces(), ocl.computeForces();
+  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::Forces));
+  std::vector<float> ax, ay, az;
+  ocl.readAccel(ax, ay, az);
+  expectClose("forces ax", cpu.fluid().ax, ax);
+  expectClose("forces ay", cpu.fluid().ay, ay);
+  expectClose("forces az", cpu.fluid().az, az);
+
+  // Control scale s_i and u_bar; the fluid's index grid with cell = control radius.
+  cpu.computeControlScale(), ocl.computeControlScale();
+  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ControlScale));
+  {
+    ff::UniformGrid g;
+    g.build(fc.size(), fc.x.data(), fc.y.data(), fc.z.data(), params.control.radius);
+    expectGridEqual("fluid grid (control radius)", g, ocl.readGrid(ff::OpenClBackend::GridKind::FluidControl),
+                    true);
+  }
+  ff::ControlSet cs;
+  ff::ControlFields cf;
+  ocl.readControl(cs, cf);
+  const ff::ControlFields& ref = cpu.controller().fields();
+  expectClose("control scale s", ref.s, cf.s);
+  expectClose("u_bar x", ref.ux, cf.ux);
+  expectClose("u_bar y", ref.uy, cf.uy);
+  expectClose("u_bar z", ref.uz, cf.uz);
+
+  // Control forces (added to the accelerations); the control particles' grid.
+  cpu.applyControlForces(dt), ocl.applyControlForces(dt);
+  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ControlForces));
+  {
+    const ff::ControlSet& c = cpu.controller().set();
+    ff::UniformGrid g;
+    g.build(c.size(), c.x.data(), c.y.data(), c.z.data(), params.control.radius);
+    expectGridEqual("control grid (control radius)", g, ocl.readGrid(ff::OpenClBackend::GridKind::Control),
+                    true);
+  }
+  ocl.readAccel(ax, ay, az);
+  expectClose("with control ax", cpu.fluid().ax, ax);
+  expectClose("with control ay", cpu.fluid().ay, ay);
+  expectClose("with control az", cpu.fluid().az, az);
+
+  // Integration.
+  cpu.integrate(dt), ocl.integrate(dt);
+  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::Integrate));
+  ocl.readFluid(fo);
+  fc = cpu.fluid().s;
+  expectClose("integrated x", fc.x, fo.x);
+  expectClose("integrated y", fc.y, fo.y);
+  expectClose("integrated z", fc.z, fo.z);
+  expectClose("integrated vx", fc.vx, fo.vx);
+  expectClose("integrated vy", fc.vy, fo.vy);
+  expectClose("integrated vz", fc.vz, fo.vz);
+
+  // One shape-matching step: rotations, goals, control particles.
+  const float sm_dt = params.shape.time_step;
+  EXPECT_EQ(cpu.shapeMatching(sm_dt), 1);
+  EXPECT_EQ(ocl.shapeMatching(sm_dt), 1);
+  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ShapeMatching));
+  std::vector<ff_quat> q;
+  ocl.readClusterRotations(q);
+  const std::vector<ff_quat>& qref = cpu.controller().clusterRotations();
+  ASSERT_EQ(q.size(), qref.size());
+  double qerr = 0.0;
+  for (size_t c = 0; c < q.size(); ++c) {
+    const ff_quat a = qref[c], b = q[c];
+    const double dm =
+        std::fabs(a.x - b.x) + std::fabs(a.y - b.y) + std::fabs(a.z - b.z) + std::fabs(a.w - b.w);
+    const double dp =
+        std::fabs(a.x + b.x) + std::fabs(a.y + b.y) + std::fabs(a.z + b.z) + std::fabs(a.w + b.w);
+    qerr = std::max(qerr, std::min(dm, dp));  // q and -q are the same rotation
+  }
+  std::printf("  %-28s max abs %.3g   (%zu clusters)\n", "cluster rotations", qerr, q.size());
+  EXPECT_LE(qerr, kTol);
+  std::vector<float> gx, gy, gz;
+  ocl.readGoals(gx, gy, gz);
+  expectClose("goal x", cpu.controller().goalX(), gx);
+  expectClose("goal y", cpu.controller().goalY(), gy);
+  expectClose("goal z", cpu.controller().goalZ(), gz);
+  ocl.readControl(cs, cf);
+  const ff::ControlSet& cref = cpu.controller().set();
+  expectClose("control x", cref.x, cs.x);
+  expectClose("control y", cref.y, cs.y);
+  expectClose("control z", cref.z, cs.z);
+  expectClose("control vx", cref.vx, cs.vx);
+  expectClose("control vy", cref.vy, cs.vy);
+  expectClose("control vz", cref.vz, cs.vz);
+  // The clock: two fluid steps of 0.004 s hold one shape-matching step of 0.005 s.
+  EXPECT_EQ(cpu.shapeMatching(dt), ocl.shapeMatching(dt));
+  EXPECT_EQ(cpu.shapeMatching(dt), ocl.shapeMatching(dt));
+  EXPECT_NEAR(cpu.controller().clock(), ocl.shapeMatchingClock(), 1e-12);
+
+  // Metrics (float partial sums on the device, double on the host).
+  const ff::StepMetrics mc = cpu.computeMetrics(), mo = ocl.computeMetrics();
+  std::printf(
+      "  metrics cpu: iou %.6f coverage %.6f max_speed %.6f density_error %.6f ke %.6g max_rho %.3f\n",
+      mc.iou, mc.coverage, mc.max_speed, mc.density_error, mc.kinetic_energy, mc.max_density);
+  std::printf(
+      "  metrics ocl: iou %.6f coverage %.6f max_speed %.6f density_error %.6f ke %.6g max_rho %.3f\n",
+      mo.iou, mo.coverage, mo.max_speed, mo.density_error, mo.kinetic_energy, mo.max_density);
+  EXPECT_GT(mc.iou, 0.0);
+  EXPECT_NEAR(mo.iou, mc.iou, 1e-3);  // a voxel whose density sits exactly on the threshold may flip
+  EXPECT_NEAR(mo.coverage, mc.coverage, kTol * std::max(1.0, mc.coverage));
+  EXPECT_NEAR(mo.max_speed, mc.max_speed, kTol * mc.max_speed);
+  EXPECT_NEAR(mo.density_error, mc.density_error, kTol * mc.density_error);
+  EXPECT_NEAR(mo.kinetic_energy, mc.kinetic_energy, kTol * mc.kinetic_energy);
+  EXPECT_NEAR(mo.max_density, mc.max_density, kTol * mc.max_density);
+  EXPECT_EQ(mo.control_count, mc.control_count);
+
+  // The next grid build reuses the metrics' index grid: still the CPU's order.
+  cpu.buildGrid(), ocl.buildGrid();
+  ocl.readFluid(fo);
+  EXPECT_TRUE(cpu.fluid().s.id == fo.id) << "sorted order differs after the metrics' grid";
+  expectGridEqual("fluid grid after metrics", cpu.fluid().grid,
+                  ocl.readGrid(ff::OpenClBackend::GridKind::Fluid), false);
+}
+
+TEST(OpenClPhases, StableSortKeepsInputOrderWithinCells) {
+  // Dense: many points per cell, given in scrambled order. The order within a
+  // cell must be the input order (what UniformGrid's sequential scatter gives),
+  // whatever order the device's atomics run in. Sparse: points spread over a
+  // metre, so the grid has ~600k cells and the prefix scan three levels.
+  auto ocl = openClBackend();
+  ASSERT_TRUE(ocl);
+  ff::Params params;
+  ff::ContainerDesc box;
+  box.max = ff::Vec3(1.0f, 1.0f, 1.0f);
+  for (const float extent : {0.04f, 1.0f}) {
+    ff::FluidState f;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.01f, 0.01f + extent);
+    for (int i = 0; i < 5000; ++i) f.push(u(rng), u(rng), u(rng), 0.0f, 0.0f, 0.0f);
+    ff::UniformGrid g;
+    g.build(f.size(), f.x.data(), f.y.data(), f.z.data(), params.fluid.smoothing_radius);
+    std::vector<uint32_t> ids(g.order().size());
+    for (size_t k = 0; k < ids.size(); ++k) ids[k] = f.id[g.order()[k]];
+    for (int rep = 0; rep < 2; ++rep) {
+      ocl->init(params, box, f);
+      ocl->buildGrid();
+      ff::FluidState sorted;
+      ocl->readFluid(sorted);
+      EXPECT_TRUE(ids == sorted.id) << "extent " << extent << ", repeat " << rep;
+      expectGridEqual("grid", g, ocl->readGrid(ff::OpenClBackend::GridKind::Fluid), false);
+    }
+  }
+}
+
+TEST(OpenClPhases, GridHeaderMatchesUniformGrid) {
+  // kernels/common/ff_grid.h compiles as C++ too: its cell arithmetic is UniformGrid's.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.1f, 0.5f);
+  std::vector<float> x(500), y(500), z(500);
+  for (size_t i = 0; i < x.size(); ++i) x[i] = u(rng), y[i] = u(rng), z[i] = u(rng);
+  ff::UniformGrid g;
+  g.build(x.size(), x.data(), y.data(), z.data(), 0.03f);
+  const float inv = 1.0f / g.cellSize();
+  for (size_t i = 0; i < x.size(); ++i) {
+    const float px = x[i] * 1.3f - 0.05f;  // also points outside the grid
+    ASSERT_EQ(ff_cell_coord(px, g.originX(), inv, g.nx()), g.cellCoord(px, g.originX(), g.nx()));
+    const int cx = g.cellCoord(x[i], g.originX(), g.nx()), cy = g.cellCoord(y[i], g.originY(), g.ny()),
+              cz = g.cellCoord(z[i], g.originZ(), g.nz());
+    uint b[9], e[9];
+    ff_grid_ranges(g.cellStart().data(), cx, cy, cz, g.nx(), g.ny(), g.nz(), b, e);
+    std::vector<std::pair<uint32_t, uint32_t>> mine, ref;
+    for (int r = 0; r < 9; ++r)
+      if (b[r] < e[r]) mine.emplace_back(b[r], e[r]);
+    g.forEachRange(x[i], y[i], z[i], [&](uint32_t bb, uint32_t ee) { ref.emplace_back(bb, ee); });
+    ASSERT_EQ(mine, ref);
+  }
+}
+
+TEST(OpenClHost, KernelSourcesResolveFromTheEmbeddedFiles) {
+  const std::vector<std::string> files = ff::embeddedKernelFiles();
+  for (const char* phase : {"kernels/grid.cl", "kernels/density.cl", "kernels/forces.cl",
+                            "kernels/control_scale.cl", "kernels/control_forces.cl",
+                            "kernels/shape_matching.cl", "kernels/integrate.cl", "kernels/metrics.cl"})
+    EXPECT_NE(std::find(files.begin(), files.end(), phase), files.end()) << phase;
+  std::set<std::string> included;
+  const std::string src = ff::resolveKernelSource("kernels/control_forces.cl", included);
+  EXPECT_EQ(src.find("#include \""), std::string::npos);  // only ff_compat.h's C++ branch keeps <cmath>
+  EXPECT_NE(src.find("ff_velocity_force_implicit"), std::string::npos);
+  EXPECT_TRUE(included.count("kernels/common/ff_sph.h") && included.count("kernels/common/ff_compat.h"));
+  // A header already included is not repeated.
+  const std::string again = ff::resolveKernelSource("kernels/density.cl", included);
+  EXPECT_EQ(again.find("FF_SPH_H"), std::string::npos);
+}
+
+TEST(OpenClHost, BuildFailureCarriesTheBuildLog) {
+  auto ocl = openClBackend();
+  ASSERT_TRUE(ocl);
+  ff::ClContext ctx(ocl->deviceInfo().index);
+  try {
+    ff::buildProgramSource(
+        ctx, "#line 1 \"kernels/broken.cl\"\n__kernel void k(__global float* a) { a[0] = nope; }\n");
+    FAIL() << "expected a build error";
+  } catch (const ff::Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("CL_BUILD_PROGRAM_FAILURE"), std::string::npos) << m;
+    EXPECT_NE(m.find("build log"), std::string::npos) << m;
+    EXPECT_NE(m.find("nope"), std::string::npos) << m;  // the compiler's own message
+    EXPECT_NE(m.find(ctx.info().name), std::string::npos) << m;
+  }
+}
+
+TEST(OpenClHost, ErrorsNameTheCallAndTheCode) {
+  EXPECT_STREQ(ff::clErrorName(CL_OUT_OF_RESOURCES), "CL_OUT_OF_RESOURCES");
+  EXPECT_STREQ(ff::clErrorName(CL_INVALID_WORK_GROUP_SIZE), "CL_INVALID_WORK_GROUP_SIZE");
+  EXPECT_STREQ(ff::clErrorName(-1001), "CL_PLATFORM_NOT_FOUND_KHR");
+  EXPECT_STREQ(ff::clErrorName(12345), "CL_UNKNOWN_ERROR");
+  auto ocl = openClBackend();
+  ASSERT_TRUE(ocl);
+  ff::ClContext ctx(ocl->deviceInfo().index);
+  try {
+    ff::clGuard("a zero-sized buffer", [&] { return cl::Buffer(ctx.context(), CL_MEM_READ_WRITE, 0); });
+    FAIL() << "expected an error";
+  } catch (const ff::Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("clCreateBuffer"), std::string::npos) << m;
+    EXPECT_NE(m.find("CL_INVALID_BUFFER_SIZE"), std::string::npos) << m;
+    EXPECT_NE(m.find("a zero-sized buffer"), std::string::npos) << m;
+  }
+  try {
+    ff::OpenClBackend bad(1000);
+    FAIL() << "expected an error";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--device 1000"), std::string::npos) << e.what();
+  }
+}
+
+TEST(OpenClHost, BackendSelection) {
+  std::string note;
+  auto cpu = ff::makeBackend("cpu", -1, 2, &note);
+  EXPECT_EQ(cpu->name(), "cpu");
+  EXPECT_TRUE(note.empty());
+  EXPECT_THROW(ff::makeBackend("cuda", -1, 2, &note), ff::Error);
+  EXPECT_THROW(ff::makeBackend("cpu", 0, 2, &note), ff::Error);
+
+  std::vector<ff::ClDeviceInfo> devices;
+  try {
+    devices = ff::listClDevices();
+  } catch (const ff::Error& e) {
+    FAIL() << "no OpenCL platform: " << e.what() << " (PoCL is a declared dependency)";
+  }
+  ASSERT_FALSE(devices.empty());
+  auto explicit_cl = ff::makeBackend("opencl", int(devices.size()) - 1, 2, &note);
+  EXPECT_EQ(explicit_cl->name(), "opencl");
+  EXPECT_THROW(ff::makeBackend("opencl", int(devices.size()), 2, &note), ff::Error);
+
+  const bool has_gpu =
+      std::any_of(devices.begin(), devices.end(), [](const ff::ClDeviceInfo& d) { return d.isGpu(); });
+  auto automatic = ff::makeBackend("auto", -1, 2, &note);
+  if (has_gpu) {
+    EXPECT_EQ(automatic->name(), "opencl");
+  } else {
+    EXPECT_EQ(automatic->name(), "cpu");
+    EXPECT_NE(note.find("no OpenCL GPU found (platforms: " + devices[0].platform), std::string::npos) << note;
+    EXPECT_NE(note.find("using the OpenMP CPU backend"), std::string::npos) << note;
+    EXPECT_EQ(note.find('\n'), std::string::npos);
+  }
+}
+
+}  // namespace

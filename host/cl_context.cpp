@@ -115,9 +115,9 @@ ClContext::ClContext(int device_index) {
     int pick = -1;
     if (device_index >= 0) {
       if (device_index >= int(all.size()))
-        throw Error("--device " + std::to_string(device_index) + ": there are only " +
-                    std::to_string(all.size()) + " OpenCL devices (0.." + std::to_string(all.size() - 1) +
-                    "; see `flowform devices`)");
+        throw Error("--device " + std::to_string(device_index) +
+                    ": no such OpenCL device; the devices are 0.." + std::to_string(all.size() - 1) +
+                    " (see `flowform devices`)");
       pick = device_index;
     } else {
       for (size_t i = 0; i < all.size() && pick < 0; ++i)

@@ -60,8 +60,11 @@ TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
   for (int i = 0; i < 3; ++i) sim.step();
   sim.setTarget(shape(ff::TargetKind::Capsule, 500));
   sim.setTarget(shape(ff::TargetKind::Torus, 500));
-  EXPECT_EQ(sim.target(), torus);  // the cached voxelisation, not a new one
-  EXPECT_EQ(sim.targetCacheSize(), 2u);
+  // Back to the torus: made from the fluid of the current shape, whose volume
+  // differs, so the cached voxelisation is rescaled, not voxelised again.
+  EXPECT_EQ(sim.targetVoxelisations(), 2u);
+  EXPECT_EQ(sim.target()->reference.size(), torus->reference.size());
+  EXPECT_EQ(sim.target()->label, "torus");
   sim.step();
   EXPECT_TRUE(std::isfinite(sim.metrics().iou));
 }
@@ -138,6 +141,24 @@ TEST(SimulationApi, PlacementNeverLiftsTheParticlesOffTheirFluid) {
   for (float y : c.y) lowest = std::min(lowest, y);
   EXPECT_LT(lowest, 0.012f);
   EXPECT_LT(lowestGoal(c), 0.0);  // the floor lifts the rest while the shape forms
+}
+
+TEST(SimulationApi, ANewTargetIsMadeFromTheFluidOfTheCurrentShape) {
+  // A block and a small blob far from it. The first target is made from all
+  // the fluid; the next one only from the fluid that forms the current shape,
+  // so the blob no longer counts.
+  ff::SceneDesc s = smallScene();
+  ff::FluidBlockDesc blob;
+  blob.origin = ff::Vec3(0.005f, 0.0f, 0.005f);
+  blob.dims[0] = blob.dims[1] = blob.dims[2] = 2;  // 8 particles in a corner
+  s.fluid.push_back(blob);
+  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 400)});
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
+  EXPECT_EQ(sim.controlledCount(), 12 * 12 * 12 + 8);
+  for (int i = 0; i < 50; ++i) sim.step();
+  sim.setTarget(shape(ff::TargetKind::Sphere, 400));
+  EXPECT_LE(sim.controlledCount(), 12 * 12 * 12);
+  EXPECT_GT(sim.controlledCount(), 12 * 12 * 12 / 2);
 }
 
 TEST(SimulationApi, EmptyRegionIsAClearError) {

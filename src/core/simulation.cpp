@@ -1,10 +1,14 @@
 #include "core/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <sstream>
+#include <vector>
 
 #include "control/placement.h"
+#include "control/shape_matching.h"
 #include "core/error.h"
 
 namespace ff {
@@ -86,20 +90,76 @@ void Simulation::setTarget(const TargetSpec& spec) {
   FluidState s;
   backend_->readFluid(s);
   const RegionDesc& r = scene_.region;
-  Vec3 lo(1e30f, 1e30f, 1e30f), hi(-1e30f, -1e30f, -1e30f);
-  long count = 0;
-  for (size_t i = 0; i < s.size(); ++i) {
-    Vec3 p(s.x[i], s.y[i], s.z[i]);
-    bool in = true;
-    if (r.kind == RegionDesc::Kind::Box)
-      in = (p.array() >= r.min.array()).all() && (p.array() <= r.max.array()).all();
-    else if (r.kind == RegionDesc::Kind::Sphere)
-      in = (p - r.center).squaredNorm() <= r.radius * r.radius;
-    if (!in) continue;
-    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    ++count;
+  // With a target already active, "the current fluid region" is the fluid that
+  // forms the current shape: inside its voxels (dilated by one voxel), placed
+  // where the control particles have carried it. Fluid that fell out of the
+  // shape onto the floor is not part of it, so it does not inflate the new
+  // target's volume or bounding box.
+  std::function<bool(const Vec3&)> inCurrentShape = [](const Vec3&) { return true; };
+  ControlSet cur;
+  if (target_) {
+    ControlFields unused;
+    backend_->readControl(cur, unused);
   }
+  ff_quat q = FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
+  float c[3] = {0, 0, 0};
+  if (target_ && cur.size() > 0) {
+    bestFitFrame(cur, q, c, 50);
+    const ff_mat3 rot = ff_quat_to_mat3(q);
+    const VoxelGrid& g = target_->grid;
+    const Vec3 rest_c(cur.rest_cx, cur.rest_cy, cur.rest_cz), centre(c[0], c[1], c[2]);
+    inCurrentShape = [&g, rot, rest_c, centre](const Vec3& p) {
+      const Vec3 d = p - centre;  // world offset; rotate back with R^T
+      const Vec3 x0 =
+          Vec3(FF_DOT(rot.c0, FF_F3(d.x(), d.y(), d.z())), FF_DOT(rot.c1, FF_F3(d.x(), d.y(), d.z())),
+               FF_DOT(rot.c2, FF_F3(d.x(), d.y(), d.z()))) +
+          rest_c;
+      const int i = int(std::floor((x0.x() - g.origin.x()) / g.voxel));
+      const int j = int(std::floor((x0.y() - g.origin.y()) / g.voxel));
+      const int k = int(std::floor((x0.z() - g.origin.z()) / g.voxel));
+      for (int dk = -1; dk <= 1; ++dk)
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int a = i + di, b = j + dj, e = k + dk;
+            if (a >= 0 && b >= 0 && e >= 0 && a < g.nx && b < g.ny && e < g.nz && g.inside[g.index(a, b, e)])
+              return true;
+          }
+      return false;
+    };
+  }
+  std::vector<float> px, py, pz;
+  auto collect = [&](bool shape_only) {
+    px.clear(), py.clear(), pz.clear();
+    for (size_t i = 0; i < s.size(); ++i) {
+      Vec3 p(s.x[i], s.y[i], s.z[i]);
+      bool in = true;
+      if (r.kind == RegionDesc::Kind::Box)
+        in = (p.array() >= r.min.array()).all() && (p.array() <= r.max.array()).all();
+      else if (r.kind == RegionDesc::Kind::Sphere)
+        in = (p - r.center).squaredNorm() <= r.radius * r.radius;
+      if (!in || (shape_only && !inCurrentShape(p))) continue;
+      px.push_back(p.x()), py.push_back(p.y()), pz.push_back(p.z());
+    }
+  };
+  collect(true);
+  if (px.empty()) collect(false);  // the current shape holds no fluid: start from the region
+  const long count = long(px.size());
   if (count == 0) throw Error(scene_.source + ": region: the controlled region holds no fluid particles");
+  // The region's bounding box, robust to the few droplets a splash throws far
+  // away: the 1st to 99th percentile of the particles along each axis (all of
+  // them for small regions). Otherwise one droplet on the far side of the
+  // container stretches the new shape over the whole floor.
+  auto range = [&](std::vector<float>& v, float& lo, float& hi) {
+    const size_t n = v.size(), k = n >= 200 ? n / 100 : 0;
+    std::nth_element(v.begin(), v.begin() + long(k), v.end());
+    lo = v[k];
+    std::nth_element(v.begin(), v.begin() + long(n - 1 - k), v.end());
+    hi = v[n - 1 - k];
+  };
+  Vec3 lo, hi;
+  range(px, lo.x(), hi.x());
+  range(py, lo.y(), hi.y());
+  range(pz, lo.z(), hi.z());
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
   const float default_voxel = 1.55f * fp.restSpacing();

@@ -37,6 +37,7 @@ class Simulation {
   double time() const { return time_; }
   const TargetShape* target() const { return target_; }
   size_t targetCacheSize() const { return cache_.size(); }
+  size_t targetVoxelisations() const { return cache_.voxelisations(); }
   long controlledCount() const { return controlled_; }
 
   // Accumulated milliseconds per phase and the number of steps they cover.

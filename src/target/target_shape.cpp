@@ -234,19 +234,35 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
 const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_volume,
                                     float default_voxel_size) {
   const double volume = volumeToUse(spec, fluid_rest_volume);
-  std::string key = spec.cacheKey(float(volume));
+  std::string suffix;
   if (spec.control_count <= 0 && spec.voxel_size <= 0.0f) {
-    std::ostringstream suffix;
-    suffix.precision(9);
-    suffix << "|default_voxel=" << default_voxel_size;
-    key += suffix.str();
+    std::ostringstream os;
+    os.precision(9);
+    os << "|default_voxel=" << default_voxel_size;
+    suffix = os.str();
   }
-  for (const auto& entry : entries_) {
-    if (entry.first == key) return *entry.second;
+  const std::string key = spec.cacheKey(float(volume)) + suffix;
+  const std::string base_key = spec.cacheKey(0.0f) + suffix;
+  for (const Entry& e : entries_)
+    if (e.key == key) return *e.shape;
+  if (spec.voxel_size <= 0.0f) {
+    for (const Entry& e : entries_) {
+      if (e.base_key != base_key) continue;
+      // The same shape at another volume: scale lengths by the cube root.
+      const double f = std::cbrt(volume / e.volume);
+      auto shape = std::make_unique<TargetShape>(*e.shape);
+      shape->grid.origin *= float(f);
+      shape->grid.voxel *= float(f);
+      for (Vec3& r : shape->reference) r *= float(f);
+      shape->shape_volume *= f * f * f;
+      entries_.push_back({key, base_key, volume, std::move(shape)});
+      return *entries_.back().shape;
+    }
   }
   auto shape = std::make_unique<TargetShape>(buildTarget(spec, fluid_rest_volume, default_voxel_size));
-  entries_.emplace_back(key, std::move(shape));
-  return *entries_.back().second;
+  ++voxelisations_;
+  entries_.push_back({key, base_key, volume, std::move(shape)});
+  return *entries_.back().shape;
 }
 
 std::string resolveMeshPath(const std::string& name, const std::string& scene_dir) {

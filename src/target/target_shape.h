@@ -70,14 +70,29 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
 
 // Keeps every voxelisation made during a run, so that switching back to a
 // target costs nothing.
+//
+// A voxelisation scales exactly with the volume: every length by
+// (V'/V)^(1/3), the same voxels. So when the same shape is asked for at
+// another volume (a target change regenerates from the fluid that forms the
+// current shape, whose volume varies), the cached voxelisation is rescaled,
+// not redone. Only a spec with an explicit voxel_size is voxelised anew,
+// since rescaling would change its voxel size.
 class TargetCache {
  public:
   const TargetShape& get(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
   size_t size() const { return entries_.size(); }
+  // How many voxelisations were actually computed (rescaled copies excluded).
+  size_t voxelisations() const { return voxelisations_; }
 
  private:
-  // unique_ptr: the references handed out stay valid as entries are added.
-  std::vector<std::pair<std::string, std::unique_ptr<TargetShape>>> entries_;
+  struct Entry {
+    std::string key;       // spec and volume
+    std::string base_key;  // spec only: the same shape at any volume
+    double volume = 0.0;
+    std::unique_ptr<TargetShape> shape;  // references handed out stay valid as entries are added
+  };
+  std::vector<Entry> entries_;
+  size_t voxelisations_ = 0;
 };
 
 // Resolves a mesh path: as given if absolute; else relative to `scene_dir`

@@ -121,9 +121,12 @@ StepMetrics CpuBackend::computeMetrics() {
     if (target_) {
       bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
       const float h = params_.fluid.smoothing_radius;
-      metrics_grid_.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
-      m.iou = voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), metrics_grid_, mass, h, rho0,
-                       0.5f);
+      if (!fluid_.grid_current) {  // the next grid phase sorts by this one
+        fluid_.grid.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
+        fluid_.grid_current = true;
+      }
+      m.iou =
+          voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), fluid_.grid, mass, h, rho0, 0.5f);
     }
   }
   return m;

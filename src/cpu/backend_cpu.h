@@ -53,7 +53,6 @@ class CpuBackend : public Backend {
   Controller controller_;
   const TargetShape* target_ = nullptr;
   RigidFrame frame_;
-  UniformGrid metrics_grid_;
 };
 
 }  // namespace ff

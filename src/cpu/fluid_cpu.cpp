@@ -8,7 +8,8 @@ namespace ff {
 
 void buildFluidGrid(CpuFluid& f, float h) {
   FluidState& s = f.s;
-  f.grid.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
+  if (!f.grid_current) f.grid.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
+  f.grid_current = false;  // after the reorder its order() no longer maps input indices
   const auto& order = f.grid.order();
   for (auto* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz}) permute(*a, order, f.scratch);
   permute(s.id, order, f.scratch_u);
@@ -111,6 +112,7 @@ void integrateFluid(CpuFluid& f, const FluidParams& p, const ContainerDesc& box,
   const float vmax = p.max_step_fraction * p.smoothing_radius / dt;
   const float eps = 1e-6f * p.smoothing_radius;
   FluidState& s = f.s;
+  f.grid_current = false;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     float v[3] = {s.vx[i] + dt * f.ax[i], s.vy[i] + dt * f.ay[i], s.vz[i] + dt * f.az[i]};

@@ -14,12 +14,17 @@ struct CpuFluid {
   std::vector<float> rho, p;      // density, pressure
   std::vector<float> ax, ay, az;  // accelerations of this step
   UniformGrid grid;               // cell size h
+  // True while `grid` indexes the current (unsorted) positions: the metrics
+  // phase builds it after integration, and the next grid phase sorts by it
+  // instead of building it again.
+  bool grid_current = false;
   std::vector<float> scratch;
   std::vector<uint32_t> scratch_u;
   size_t size() const { return s.size(); }
 };
 
-// Phase "grid": counting sort by cell of size h, then reorder every array.
+// Phase "grid": counting sort by cell of size h (unless f.grid_current), then
+// reorder every array.
 void buildFluidGrid(CpuFluid& f, float h);
 
 // Phase "density" (part of the WCSPH pressure solver): rho_i = sum_j m W_poly6

@@ -31,8 +31,8 @@ void UniformGrid::build(size_t n, const float* x, const float* y, const float* z
   start_.assign(ncells + 1, 0);
   cell_of_.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    size_t c = size_t(cellCoord(x[i], ox_, nx_)) +
-               size_t(nx_) * (size_t(cellCoord(y[i], oy_, ny_)) + size_t(ny_) * cellCoord(z[i], oz_, nz_));
+    size_t c = ff_cell_index(cellCoord(x[i], ox_, nx_), cellCoord(y[i], oy_, ny_), cellCoord(z[i], oz_, nz_),
+                             nx_, ny_);
     cell_of_[i] = uint32_t(c);
     ++start_[c + 1];
   }

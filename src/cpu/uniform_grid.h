@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "ff_grid.h"
+
 namespace ff {
 
 class UniformGrid {
@@ -31,10 +33,7 @@ class UniformGrid {
   float originY() const { return oy_; }
   float originZ() const { return oz_; }
 
-  int cellCoord(float v, float o, int n) const {
-    int c = int((v - o) * inv_cell_);
-    return c < 0 ? 0 : (c >= n ? n - 1 : c);
-  }
+  int cellCoord(float v, float o, int n) const { return ff_cell_coord(v, o, inv_cell_, n); }
 
   // Calls f(begin, end) for each of the 9 contiguous sorted ranges that make up
   // the 27 cells around (px, py, pz). Indices are positions in sorted order.
@@ -46,7 +45,7 @@ class UniformGrid {
       if (z < 0 || z >= nz_) continue;
       for (int y = cy - 1; y <= cy + 1; ++y) {
         if (y < 0 || y >= ny_) continue;
-        size_t row = size_t(nx_) * (size_t(y) + size_t(ny_) * size_t(z));
+        size_t row = ff_cell_index(0, y, z, nx_, ny_);
         uint32_t b = start_[row + x0], e = start_[row + x1 + 1];
         if (b < e) f(b, e);
       }

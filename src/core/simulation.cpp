@@ -39,7 +39,9 @@ void Simulation::timed(Phase p, F&& f) {
   auto t0 = std::chrono::steady_clock::now();
   f();
   auto t1 = std::chrono::steady_clock::now();
-  phase_ms_[size_t(p)] += std::chrono::duration<double, std::milli>(t1 - t0).count();
+  const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  phase_ms_[size_t(p)] += ms;
+  last_step_ms_[size_t(p)] += ms;
   check(p);
 }
 
@@ -60,6 +62,7 @@ void Simulation::applySchedule() {
 }
 
 void Simulation::step() {
+  last_step_ms_.fill(0.0);
   applySchedule();
   const FluidParams& fp = scene_.params.fluid;
   // Substeps from the CFL condition, with last step's highest density and speed.

@@ -42,6 +42,8 @@ class Simulation {
 
   // Accumulated milliseconds per phase and the number of steps they cover.
   const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
+  // Milliseconds per phase of the last step alone (all its substeps).
+  const std::array<double, size_t(Phase::Count)>& lastStepMs() const { return last_step_ms_; }
 
   // The fluid of a scene, block by block, on cubic lattices.
   static FluidState makeFluid(const SceneDesc& scene);
@@ -64,6 +66,7 @@ class Simulation {
   double time_ = 0.0;
   StepMetrics metrics_;
   std::array<double, size_t(Phase::Count)> phase_ms_{};
+  std::array<double, size_t(Phase::Count)> last_step_ms_{};
 };
 
 }  // namespace ff

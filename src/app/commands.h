@@ -8,5 +8,8 @@ namespace ff::app {
 // the process exit code.
 std::function<int()> addRunCommand(CLI::App& app);
 std::function<int()> addDevicesCommand(CLI::App& app);
+std::function<int()> addViewCommand(CLI::App& app);    // cmd_view.cpp
+std::function<int()> addRenderCommand(CLI::App& app);  // cmd_render.cpp
+std::function<int()> addBenchCommand(CLI::App& app);   // cmd_bench.cpp
 
 }  // namespace ff::app

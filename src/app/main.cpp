@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   auto run = ff::app::addRunCommand(app);
   auto devices = ff::app::addDevicesCommand(app);
+  auto view = ff::app::addViewCommand(app);
+  auto render = ff::app::addRenderCommand(app);
+  auto bench = ff::app::addBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -23,6 +26,9 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : app.get_subcommands()) {
       if (sub->get_name() == "run") return run();
       if (sub->get_name() == "devices") return devices();
+      if (sub->get_name() == "view") return view();
+      if (sub->get_name() == "render") return render();
+      if (sub->get_name() == "bench") return bench();
     }
     // No subcommand: run the default scene.
     return run();

@@ -21,10 +21,8 @@ OpenClBackend::Impl::Impl(int device_index)
   m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
   m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));
   m_iou = makeKernel(program, "metrics_iou", ctx, 256, 2 * sizeof(cl_uint));
-  for (DeviceBuffer& f : flag) {
-    f.ensure(ctx.context(), sizeof(cl_int));
-    fillBuffer(ctx.queue(), f, cl_int(0), 1);
-  }
+  bad.ensure(ctx.context(), sizeof(cl_int));
+  fillBuffer(ctx.queue(), bad, cl_int(0), 1);
 }
 
 OpenClBackend::OpenClBackend(int device_index)
@@ -40,8 +38,12 @@ const ClDeviceInfo& OpenClBackend::deviceInfo() const {
   return d_->ctx.info();
 }
 
-void OpenClBackend::beginPhase(Phase p) {
-  fillBuffer(d_->queue(), d_->flag[size_t(p)], cl_int(0), 1);
+int OpenClBackend::beginPhase(Phase p) {
+  return int(log_.begin(p));
+}
+
+void OpenClBackend::endPhase() {
+  if (profiling_) d_->queue().finish();
 }
 
 void OpenClBackend::init(const Params& params, const ContainerDesc& box, const FluidState& fluid) {
@@ -52,17 +54,17 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
     box_ = box;
     n_ = fluid.size();
     d.cur = 0;
+    for (DeviceBuffer* b : {&d.x[0], &d.y[0], &d.z[0], &d.vx[0], &d.vy[0], &d.vz[0], &d.x[1], &d.y[1],
+                            &d.z[1], &d.vx[1], &d.vy[1], &d.vz[1]})
+      b->ensure(c, padded8(n_) * sizeof(float));
     upload(q, c, d.x[0], fluid.x), upload(q, c, d.y[0], fluid.y), upload(q, c, d.z[0], fluid.z);
     upload(q, c, d.vx[0], fluid.vx), upload(q, c, d.vy[0], fluid.vy), upload(q, c, d.vz[0], fluid.vz);
     upload(q, c, d.id[0], fluid.id);
-    for (DeviceBuffer* b : {&d.x[1], &d.y[1], &d.z[1], &d.vx[1], &d.vy[1], &d.vz[1], &d.id[1], &d.rho, &d.p,
-                            &d.ax, &d.ay, &d.az})
-      b->ensure(c, n_ * sizeof(float));
+    for (DeviceBuffer* b : {&d.id[1], &d.rho, &d.p, &d.ax, &d.ay, &d.az}) b->ensure(c, n_ * sizeof(float));
     fillBuffer(q, d.rho, params.fluid.rest_density, n_);
     for (DeviceBuffer* b : {&d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, n_);
     setParams(params);
     grid_state_ = GridState::Stale;
-    bbox_valid_ = false;
     q.finish();
   });
 }
@@ -117,82 +119,89 @@ void OpenClBackend::setMetricsTarget(const TargetShape* target) {
   });
 }
 
-void OpenClBackend::fluidGridBounds(float lo[3], float hi[3]) {
-  if (!bbox_valid_) {
-    d_->grids.bbox(d_->X(), d_->Y(), d_->Z(), n_, bbox_lo_, bbox_hi_);
-    bbox_valid_ = true;
-  }
-  for (int k = 0; k < 3; ++k) lo[k] = bbox_lo_[k], hi[k] = bbox_hi_[k];
-}
-
 void OpenClBackend::buildGrid() {
   clGuard("phase 'grid'", [&] {
     Impl& d = *d_;
     beginPhase(Phase::Grid);
     if (n_ == 0) return;
-    if (grid_state_ != GridState::Index) {
-      float lo[3], hi[3];
-      fluidGridBounds(lo, hi);
-      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, params_.fluid.smoothing_radius, lo, hi);
-    }
+    if (grid_state_ != GridState::Index)
+      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, params_.fluid.smoothing_radius, boxMin(box_),
+                    boxMax(box_));
     const int o = 1 - d.cur;
     launch(d.queue(), d.reorder, n_, d.fluid_h.order.get(), cl_uint(n_), d.X(), d.Y(), d.Z(), d.VX(), d.VY(),
            d.VZ(), d.id[d.cur].get(), d.x[o].get(), d.y[o].get(), d.z[o].get(), d.vx[o].get(), d.vy[o].get(),
            d.vz[o].get(), d.id[o].get());
     d.cur = o;
     grid_state_ = GridState::Sorted;
-    d.queue().finish();
+    endPhase();
   });
 }
 
 void OpenClBackend::computeDensity() {
   clGuard("phase 'density'", [&] {
     Impl& d = *d_;
-    beginPhase(Phase::Density);
+    const int tag = beginPhase(Phase::Density);
     const FluidParams& f = params_.fluid;
-    launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), d.fluid_h.start.get(),
-           d.fluid_h.geom.geo(), d.fluid_h.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density,
-           f.gas_constant, boxLo(box_), boxHi(box_), d.rho.get(), d.p.get(), d.flagOf(Phase::Density));
-    d.queue().finish();
+    const DeviceGrid& g = d.fluid_h;
+    launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(), g.geom.geo(),
+           g.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density, f.gas_constant, boxLo(box_),
+           boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
+    endPhase();
   });
 }
 
 void OpenClBackend::computeForces() {
   clGuard("phase 'forces'", [&] {
     Impl& d = *d_;
-    beginPhase(Phase::Forces);
+    const int tag = beginPhase(Phase::Forces);
     const FluidParams& f = params_.fluid;
+    const DeviceGrid& g = d.fluid_h;
     launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), d.p.get(),
-           cl_uint(n_), d.fluid_h.start.get(), d.fluid_h.geom.geo(), d.fluid_h.geom.dims(),
-           f.smoothing_radius, f.particle_mass, f.viscosity,
-           f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f), boxLo(box_), boxHi(box_), d.ax.get(),
-           d.ay.get(), d.az.get(), d.flagOf(Phase::Forces));
-    d.queue().finish();
+           cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass,
+           f.viscosity, f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f), boxLo(box_), boxHi(box_),
+           d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    endPhase();
   });
 }
 
 void OpenClBackend::integrate(float dt) {
   clGuard("phase 'integrate'", [&] {
     Impl& d = *d_;
-    beginPhase(Phase::Integrate);
+    const int tag = beginPhase(Phase::Integrate);
     const FluidParams& f = params_.fluid;
     const float vmax = f.max_step_fraction * f.smoothing_radius / dt;
     const float eps = 1e-6f * f.smoothing_radius;
     launch(d.queue(), d.integrate, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.ax.get(), d.ay.get(),
-           d.az.get(), cl_uint(n_), dt, vmax, eps, boxLo(box_), boxHi(box_), d.flagOf(Phase::Integrate));
+           d.az.get(), cl_uint(n_), dt, vmax, eps, boxLo(box_), boxHi(box_), d.bad.get(), cl_int(tag));
     grid_state_ = GridState::Stale;
-    bbox_valid_ = false;
-    d.queue().finish();
+    endPhase();
   });
 }
 
-bool OpenClBackend::finiteAfter(Phase phase) {
-  if (phase == Phase::Grid || phase == Phase::Metrics || phase == Phase::Count) return true;
-  return clGuard(std::string("checking phase '") + phaseName(phase) + "' for NaN", [&] {
-    cl_int bad = 0;
-    d_->queue().enqueueReadBuffer(d_->flagOf(phase), CL_TRUE, 0, sizeof(cl_int), &bad);
-    return bad == 0;
+Phase OpenClBackend::firstNonFinite(int* substep) {
+  return clGuard("reading the non-finite record", [&] {
+    cl_int tag = 0;
+    d_->queue().enqueueReadBuffer(d_->bad.get(), CL_TRUE, 0, sizeof(cl_int), &tag);
+    if (tag != 0) fillBuffer(d_->queue(), d_->bad, cl_int(0), 1);
+    return log_.take(uint32_t(tag), substep);
   });
+}
+
+size_t OpenClBackend::memoryBytes() const {
+  const Impl& d = *d_;
+  size_t bytes = 0;
+  for (int k = 0; k < 2; ++k)
+    for (const DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k], &d.id[k]})
+      bytes += b->capacity();
+  for (const DeviceBuffer* b :
+       {&d.rho,     &d.p,        &d.ax,     &d.ay,      &d.az,       &d.cx,         &d.cy,      &d.cz,
+        &d.cvx,     &d.cvy,      &d.cvz,    &d.x0,      &d.y0,       &d.z0,         &d.s,       &d.ux,
+        &d.uy,      &d.uz,       &d.gx,     &d.gy,      &d.gz,       &d.sx,         &d.sy,      &d.sz,
+        &d.ss,      &d.svx,      &d.svy,    &d.svz,     &d.cl_start, &d.cl_members, &d.rest_cx, &d.rest_cy,
+        &d.rest_cz, &d.of_start, &d.of,     &d.q,       &d.com_x,    &d.com_y,      &d.com_z,   &d.ccv_x,
+        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.partial, &d.bad})
+    bytes += b->capacity();
+  return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
 }
 
 void OpenClBackend::readFluid(FluidState& out) {
@@ -249,9 +258,7 @@ void OpenClBackend::readClusterRotations(std::vector<ff_quat>& q) {
 
 OpenClBackend::GridSnapshot OpenClBackend::readGrid(GridKind kind) {
   return clGuard("reading a grid", [&] {
-    const DeviceGrid& g = kind == GridKind::Fluid
-                              ? d_->fluid_h
-                              : (kind == GridKind::FluidControl ? d_->fluid_r : d_->control_r);
+    const DeviceGrid& g = kind == GridKind::Fluid ? d_->fluid_h : d_->control_r;
     GridSnapshot s;
     s.geom = g.geom;
     if (g.start.capacity() == 0) return s;  // never built

@@ -2,7 +2,8 @@
 // (kernels/*.cl, built at start from the sources embedded in the binary).
 // The particle data stays on the device for the whole run; it crosses to the
 // host only for readFluid / readControl / readDensity, the metrics' partial
-// sums, the grids' bounding boxes (6 floats) and the finite-value flags.
+// sums and, once per step, the record of the first non-finite phase (one int).
+// The grids span the container, so building one reads nothing back.
 //
 // Each phase mirrors the OpenMP backend's arithmetic and summation order
 // (src/cpu/, src/control/, src/metrics/), with the shared formulas of
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "core/backend.h"
+#include "core/nonfinite_log.h"
 #include "ff_rotation.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"
@@ -43,7 +45,9 @@ class OpenClBackend : public Backend {
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
   StepMetrics computeMetrics() override;
-  bool finiteAfter(Phase phase) override;
+  Phase firstNonFinite(int* substep = nullptr) override;
+  void setProfiling(bool on) override { profiling_ = on; }
+  size_t memoryBytes() const override;
 
   void readFluid(FluidState& out) override;
   void readDensity(std::vector<float>& rho, std::vector<float>& pressure) override;
@@ -54,11 +58,8 @@ class OpenClBackend : public Backend {
   void readAccel(std::vector<float>& ax, std::vector<float>& ay, std::vector<float>& az);
   void readGoals(std::vector<float>& gx, std::vector<float>& gy, std::vector<float>& gz);
   void readClusterRotations(std::vector<ff_quat>& q);
-  enum class GridKind {
-    Fluid,
-    FluidControl,
-    Control
-  };  // cell h (sorted fluid), control radius (fluid, control)
+  // Cell h over the fluid (sorts it); control radius / FF_CONTROL_GRID_DIVISIONS over the control particles.
+  enum class GridKind { Fluid, Control };
   struct GridSnapshot {
     GridGeom geom;
     std::vector<uint32_t> start, order;
@@ -67,10 +68,10 @@ class OpenClBackend : public Backend {
   double shapeMatchingClock() const { return clock_; }
 
  private:
-  struct Impl;  // device buffers and kernels
-  void fluidGridBounds(float lo[3], float hi[3]);
-  void beginPhase(Phase p);
-  void runShapeMatchStep();
+  struct Impl;              // device buffers and kernels
+  int beginPhase(Phase p);  // returns the phase's non-finite tag
+  void endPhase();          // waits for the phase's kernels when profiling
+  void runShapeMatchStep(int tag);
   void uploadControl();
 
   std::unique_ptr<Impl> d_;
@@ -86,8 +87,8 @@ class OpenClBackend : public Backend {
   // the current positions without reordering (by the metrics, reused by the
   // next buildGrid); Sorted after buildGrid reordered the arrays by it.
   enum class GridState { Stale, Index, Sorted } grid_state_ = GridState::Stale;
-  bool bbox_valid_ = false;  // bbox_lo_/hi_ hold the current fluid positions' bounding box
-  float bbox_lo_[3] = {0, 0, 0}, bbox_hi_[3] = {0, 0, 0};
+  NonFiniteLog log_;
+  bool profiling_ = true;
 };
 
 }  // namespace ff

@@ -11,30 +11,27 @@ namespace ff {
 void OpenClBackend::computeControlScale() {
   clGuard("phase 'control_scale'", [&] {
     Impl& d = *d_;
-    beginPhase(Phase::ControlScale);
+    const int tag = beginPhase(Phase::ControlScale);
     if (nc_ == 0 || n_ == 0) return;
-    const float r = params_.control.radius;
-    float lo[3], hi[3];
-    fluidGridBounds(lo, hi);
-    d.grids.build(d.fluid_r, d.X(), d.Y(), d.Z(), n_, r, lo, hi);
+    // The fluid as the grid phase sorted it (cell h).
+    const DeviceGrid& g = d.fluid_h;
     launch(d.queue(), d.control_scale, nc_, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(), d.Y(),
-           d.Z(), d.VX(), d.VY(), d.VZ(), d.fluid_r.order.get(), d.fluid_r.start.get(), d.fluid_r.geom.geo(),
-           d.fluid_r.geom.dims(), r, params_.fluid.restVolume(), d.s.get(), d.ux.get(), d.uy.get(),
-           d.uz.get(), d.flagOf(Phase::ControlScale));
-    d.queue().finish();
+           d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
+           params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(), d.uy.get(), d.uz.get(),
+           d.bad.get(), cl_int(tag));
+    endPhase();
   });
 }
 
 void OpenClBackend::applyControlForces(float dt) {
   clGuard("phase 'control_forces'", [&] {
     Impl& d = *d_;
-    beginPhase(Phase::ControlForces);
+    const int tag = beginPhase(Phase::ControlForces);
     if (nc_ == 0 || n_ == 0) return;
     const ControlParams& cp = params_.control;
     const float r = cp.radius;
-    float lo[3], hi[3];
-    d.grids.bbox(d.cx.get(), d.cy.get(), d.cz.get(), nc_, lo, hi);
-    d.grids.build(d.control_r, d.cx.get(), d.cy.get(), d.cz.get(), nc_, r, lo, hi);
+    d.grids.build(d.control_r, d.cx.get(), d.cy.get(), d.cz.get(), nc_, r / float(FF_CONTROL_GRID_DIVISIONS),
+                  boxMin(box_), boxMax(box_));
     launch(d.queue(), d.control_gather, nc_, d.control_r.order.get(), cl_uint(nc_), d.cx.get(), d.cy.get(),
            d.cz.get(), d.s.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.sx.get(), d.sy.get(), d.sz.get(),
            d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get());
@@ -43,35 +40,35 @@ void OpenClBackend::applyControlForces(float dt) {
     const float cp_volume = control_.particle_volume;
     const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
     const float* g = params_.fluid.gravity;
+    const DeviceGrid& cg = d.control_r;
     launch(d.queue(), d.control_forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(),
            cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(),
-           d.control_r.start.get(), d.control_r.geom.geo(), d.control_r.geom.dims(), r, cp_volume, full_at,
-           cp.attraction, cp.velocity, cp.gravity_compensation, per_density, unit_scale,
-           f4(g[0], g[1], g[2], 0.0f), dt, d.ax.get(), d.ay.get(), d.az.get(),
-           d.flagOf(Phase::ControlForces));
-    d.queue().finish();
+           cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at, cp.attraction,
+           cp.velocity, cp.gravity_compensation, per_density, unit_scale, f4(g[0], g[1], g[2], 0.0f), dt,
+           d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    endPhase();
   });
 }
 
 int OpenClBackend::shapeMatching(float dt) {
   return clGuard("phase 'shape_matching'", [&] {
-    beginPhase(Phase::ShapeMatching);
+    const int tag = beginPhase(Phase::ShapeMatching);
     if (nc_ == 0) return 0;
     // The shape-matching clock of Controller::advance.
     clock_ += dt;
     int steps = 0;
     const double h = params_.shape.time_step;
     while (clock_ >= h * (1.0 - 1e-9)) {
-      runShapeMatchStep();
+      runShapeMatchStep(tag);
       clock_ -= h;
       ++steps;
     }
-    d_->queue().finish();
+    endPhase();
     return steps;
   });
 }
 
-void OpenClBackend::runShapeMatchStep() {
+void OpenClBackend::runShapeMatchStep(int tag) {
   Impl& d = *d_;
   const ShapeMatchParams& sm = params_.shape;
   launch(d.queue(), d.sm_frames, nclusters_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
@@ -84,7 +81,7 @@ void OpenClBackend::runShapeMatchStep() {
          d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), d.q.get(), d.com_x.get(), d.com_y.get(),
          d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(),
          sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, boxLo(box_), boxHi(box_),
-         d.gx.get(), d.gy.get(), d.gz.get(), d.flagOf(Phase::ShapeMatching));
+         d.gx.get(), d.gy.get(), d.gz.get(), d.bad.get(), cl_int(tag));
 }
 
 }  // namespace ff

@@ -26,9 +26,8 @@ struct OpenClBackend::Impl {
   DeviceBuffer x[2], y[2], z[2], vx[2], vy[2], vz[2], id[2];
   int cur = 0;
   DeviceBuffer rho, p, ax, ay, az;
-  DeviceGrid fluid_h;    // cell h over the fluid (sorts it; also the metrics' index grid)
-  DeviceGrid fluid_r;    // cell = control radius over the fluid (index grid, control scale)
-  DeviceGrid control_r;  // cell = control radius over the control particles (control forces)
+  DeviceGrid fluid_h;    // cell h over the fluid (sorts it; control scale; the metrics' index grid)
+  DeviceGrid control_r;  // cell = control radius / FF_CONTROL_GRID_DIVISIONS over the control particles
 
   // Control particles (fixed order) and their per-step fields.
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
@@ -41,7 +40,7 @@ struct OpenClBackend::Impl {
   DeviceBuffer partial;
   std::vector<float> partial_host;
   std::vector<cl_uint> partial_uint;
-  DeviceBuffer flag[size_t(Phase::Count)];  // set to 1 by a kernel that wrote a NaN or Inf
+  DeviceBuffer bad;  // the tag of the first kernel that wrote a NaN or Inf (ff_check.h), else 0
 
   const cl::Buffer& X() const { return x[cur].get(); }
   const cl::Buffer& Y() const { return y[cur].get(); }
@@ -49,7 +48,6 @@ struct OpenClBackend::Impl {
   const cl::Buffer& VX() const { return vx[cur].get(); }
   const cl::Buffer& VY() const { return vy[cur].get(); }
   const cl::Buffer& VZ() const { return vz[cur].get(); }
-  const cl::Buffer& flagOf(Phase ph) const { return flag[size_t(ph)].get(); }
   cl::CommandQueue& queue() { return ctx.queue(); }
   // Work-groups for a reduction over n items: at most 64, so the host sums few partials.
   static size_t reduceGroups(size_t n, size_t local) {
@@ -57,6 +55,17 @@ struct OpenClBackend::Impl {
     return g < 1 ? 1 : (g > 64 ? 64 : g);
   }
 };
+
+// Fluid buffers hold a multiple of 8 floats: kernels read 8 at a time (control_scale.cl).
+inline size_t padded8(size_t n) {
+  return (n + 7) / 8 * 8;
+}
+inline const float* boxMin(const ContainerDesc& b) {
+  return b.min.data();
+}
+inline const float* boxMax(const ContainerDesc& b) {
+  return b.max.data();
+}
 
 inline cl_float4 boxLo(const ContainerDesc& b) {
   return f4(b.min.x(), b.min.y(), b.min.z(), 0.0f);

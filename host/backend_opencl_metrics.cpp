@@ -75,9 +75,7 @@ StepMetrics OpenClBackend::computeMetrics() {
     // buildGrid sorts by it instead of building it again.
     const float h = params_.fluid.smoothing_radius;
     if (grid_state_ != GridState::Index) {
-      float lo[3], hi[3];
-      fluidGridBounds(lo, hi);
-      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, h, lo, hi);
+      d.grids.build(d.fluid_h, d.X(), d.Y(), d.Z(), n_, h, boxMin(box_), boxMax(box_));
       grid_state_ = GridState::Index;
     }
     const VoxelGrid& g = target_->grid;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cpu/uniform_grid.h"
+
 namespace ff {
 
 GridGeom gridGeometry(const float lo[3], const float hi[3], float cell, size_t max_cells) {
@@ -20,31 +22,12 @@ GridGeom gridGeometry(const float lo[3], const float hi[3], float cell, size_t m
 }
 
 GridBuilder::GridBuilder(ClContext& cl, const cl::Program& program) : cl_(cl) {
-  bbox_ = makeKernel(program, "grid_bbox", cl, 256, 6 * sizeof(float));
   count_ = makeKernel(program, "grid_count", cl);
   scan_block_ = makeKernel(program, "scan_block", cl, 256, sizeof(cl_uint));
   scan_add_ = makeKernel(program, "scan_add", cl);
   scatter_ = makeKernel(program, "grid_scatter", cl);
   rank_ = makeKernel(program, "grid_rank", cl);
   scan_local_ = std::min(scan_block_.pow2_local, scan_add_.pow2_local);
-}
-
-void GridBuilder::bbox(const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z, size_t n, float lo[3],
-                       float hi[3]) {
-  const size_t local = bbox_.pow2_local;
-  const size_t groups = std::max<size_t>(1, std::min<size_t>((n + local - 1) / local, 64));
-  bbox_partial_.ensure(cl_.context(), groups * 6 * sizeof(float));
-  launchGroups(cl_.queue(), bbox_, groups, local, x, y, z, cl_uint(n), bbox_partial_.get(),
-               cl::Local(local * 6 * sizeof(float)));
-  bbox_host_.resize(groups * 6);
-  cl_.queue().enqueueReadBuffer(bbox_partial_.get(), CL_TRUE, 0, groups * 6 * sizeof(float),
-                                bbox_host_.data());
-  for (int d = 0; d < 3; ++d) lo[d] = bbox_host_[size_t(d)], hi[d] = bbox_host_[size_t(3 + d)];
-  for (size_t g = 1; g < groups; ++g)
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min(lo[d], bbox_host_[6 * g + size_t(d)]);
-      hi[d] = std::max(hi[d], bbox_host_[6 * g + size_t(3 + d)]);
-    }
 }
 
 void GridBuilder::scan(cl::Buffer data, size_t m, size_t level) {
@@ -62,21 +45,20 @@ void GridBuilder::scan(cl::Buffer data, size_t m, size_t level) {
 
 void GridBuilder::build(DeviceGrid& g, const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z,
                         size_t n, float cell, const float lo[3], const float hi[3]) {
-  const float zero[3] = {0.0f, 0.0f, 0.0f};
-  g.geom = n > 0 ? gridGeometry(lo, hi, cell) : gridGeometry(zero, zero, cell);
+  g.geom = gridGeometry(lo, hi, cell, gridCellCap(n));
   g.n = n;
   const size_t cells = g.geom.cells();
   const cl::Context& ctx = cl_.context();
   cl::CommandQueue& q = cl_.queue();
   g.start.ensure(ctx, (cells + 1) * sizeof(cl_uint));
-  g.fill.ensure(ctx, cells * sizeof(cl_uint));
-  for (DeviceBuffer* b : {&g.order, &g.cell_of, &g.slots}) b->ensure(ctx, n * sizeof(cl_uint));
+  fill_.ensure(ctx, cells * sizeof(cl_uint));
+  for (DeviceBuffer* b : {&g.order, &cell_of_, &slots_}) b->ensure(ctx, n * sizeof(cl_uint));
   fillBuffer(q, g.start, cl_uint(0), cells + 1);
-  fillBuffer(q, g.fill, cl_uint(0), cells);
-  launch(q, count_, n, x, y, z, cl_uint(n), g.geom.geo(), g.geom.dims(), g.cell_of.get(), g.start.get());
+  fillBuffer(q, fill_, cl_uint(0), cells);
+  launch(q, count_, n, x, y, z, cl_uint(n), g.geom.geo(), g.geom.dims(), cell_of_.get(), g.start.get());
   scan(g.start.get(), cells + 1, 0);
-  launch(q, scatter_, n, g.cell_of.get(), cl_uint(n), g.start.get(), g.fill.get(), g.slots.get());
-  launch(q, rank_, n, g.cell_of.get(), cl_uint(n), g.start.get(), g.slots.get(), g.order.get());
+  launch(q, scatter_, n, cell_of_.get(), cl_uint(n), g.start.get(), fill_.get(), slots_.get());
+  launch(q, rank_, n, cell_of_.get(), cl_uint(n), g.start.get(), slots_.get(), g.order.get());
 }
 
 }  // namespace ff

@@ -1,8 +1,8 @@
 // device_grid.h - the uniform neighbour grid on the device, the same grid as
-// src/cpu/uniform_grid.h builds on the host: the points' bounding box
-// (reduced on the device, 6 floats read back) plus one cell of padding,
-// counting sort by cell (atomic counts, block prefix scan, scatter), made
-// stable by ranking the points of a cell by input index.
+// src/cpu/uniform_grid.h builds on the host: over the container's box (known
+// on the host, so nothing is read back) plus one cell of padding, counting
+// sort by cell (atomic counts, block prefix scan, scatter), made stable by
+// ranking the points of a cell by input index.
 #pragma once
 #include <CL/opencl.hpp>
 #include <cstdint>
@@ -34,29 +34,31 @@ struct DeviceGrid {
   size_t n = 0;
   DeviceBuffer start;  // uint, cells + 1
   DeviceBuffer order;  // uint, n
-  DeviceBuffer cell_of, slots;
-  DeviceBuffer fill;
+  size_t memoryBytes() const { return start.capacity() + order.capacity(); }
 };
 
 class GridBuilder {
  public:
   GridBuilder(ClContext& cl, const cl::Program& program);
 
-  // Bounding box of n > 0 points (blocking: reads back one partial per group).
-  void bbox(const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z, size_t n, float lo[3],
-            float hi[3]);
-  // Builds `g` over the n points with cell size `cell` and bounding box [lo, hi].
+  // Builds `g` over the n points with cell size `cell` over the box [lo, hi],
+  // which holds every point (at most gridCellCap(n) cells).
   void build(DeviceGrid& g, const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z, size_t n,
              float cell, const float lo[3], const float hi[3]);
+  // Bytes of the build's scratch (shared by every grid) and the scan's block sums.
+  size_t memoryBytes() const {
+    size_t b = cell_of_.capacity() + slots_.capacity() + fill_.capacity();
+    for (const DeviceBuffer& s : scan_sums_) b += s.capacity();
+    return b;
+  }
 
  private:
   void scan(cl::Buffer data, size_t m, size_t level);
   ClContext& cl_;
-  ClKernel bbox_, count_, scan_block_, scan_add_, scatter_, rank_;
+  ClKernel count_, scan_block_, scan_add_, scatter_, rank_;
   size_t scan_local_ = 1;
-  DeviceBuffer bbox_partial_;
-  std::vector<float> bbox_host_;
-  std::deque<DeviceBuffer> scan_sums_;  // one per level (a deque keeps references valid as it grows)
+  DeviceBuffer cell_of_, slots_, fill_;  // build scratch: cell of each point, scatter slots, per-cell fill
+  std::deque<DeviceBuffer> scan_sums_;   // one per level (a deque keeps references valid as it grows)
 };
 
 }  // namespace ff

@@ -4,6 +4,7 @@
 // through their own grid (cell size = the control radius), gathered into cell
 // order first. Mirrors Controller::addForces in src/control/controller.cpp.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_control.h"
 #include "ff_grid.h"
 #include "ff_sph.h"
@@ -24,34 +25,47 @@ __kernel void control_gather(__global const uint* order, uint nc, __global const
 // per_density: divide by rho_e (force density); else multiply by unit_scale (1, or 1 / m for a force).
 // full_at = ff_control_full_coverage(cp_volume, radius, ff_poly6_coef(radius)), evaluated
 // once on the host (as the CPU backend does) so that both use the same cbrt.
+// The control grid (cells of radius / FF_CONTROL_GRID_DIVISIONS) is read in
+// its rows within reach, ascending: the order of Controller::addForces.
 __kernel void control_forces(__global const float* x, __global const float* y, __global const float* z,
                              __global const float* vx, __global const float* vy, __global const float* vz,
                              __global const float* rho, uint n, __global const float* sx,
                              __global const float* sy, __global const float* sz, __global const float* ss,
                              __global const float* svx, __global const float* svy, __global const float* svz,
-                             __global const uint* start, float4 geo, int4 dims, float radius, float cp_volume,
-                             float full_at, float wa, float wv, float gc, int per_density, float unit_scale,
-                             float4 gravity, float dt, __global float* ax, __global float* ay,
-                             __global float* az, __global int* bad) {
+                             __global const uint* start, float4 geo, int4 dims, float cell, float radius,
+                             float cp_volume, float full_at, float wa, float wv, float gc, int per_density,
+                             float unit_scale, float4 gravity, float dt, __global float* ax,
+                             __global float* ay, __global float* az, __global int* bad, int tag) {
   const uint e = get_global_id(0);
   if (e >= n) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
   const float xe = x[e], ye = y[e], ze = z[e];
-  uint b[9], en[9];
-  ff_grid_ranges(start, ff_cell_coord(xe, geo.x, geo.w, dims.x), ff_cell_coord(ye, geo.y, geo.w, dims.y),
-                 ff_cell_coord(ze, geo.z, geo.w, dims.z), dims.x, dims.y, dims.z, b, en);
+  const float reach = ff_query_reach(radius, cell);
+  const int z0 = ff_cell_coord(ze - reach, geo.z, geo.w, dims.z),
+            z1 = ff_cell_coord(ze + reach, geo.z, geo.w, dims.z);
+  const int y0 = ff_cell_coord(ye - reach, geo.y, geo.w, dims.y),
+            y1 = ff_cell_coord(ye + reach, geo.y, geo.w, dims.y);
   ff_float3 fa = FF_F3(0.0f, 0.0f, 0.0f);
   float wsum = 0.0f, vsx = 0.0f, vsy = 0.0f, vsz = 0.0f;
-  for (int r = 0; r < 9; ++r)
-    for (uint k = b[r]; k < en[r]; ++k) {
-      const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
-      const float d2 = FF_DOT(d, d);
-      const float w = ff_poly6(d2, r2, coef);
-      if (w <= 0.0f) continue;
-      fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
-      wsum += w;
-      vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+  for (int cz = z0; cz <= z1; ++cz) {
+    const float gz = ff_slab_gap(ze, ze, cz, dims.z, geo.z, cell);
+    for (int cy = y0; cy <= y1; ++cy) {
+      const float gy = ff_slab_gap(ye, ye, cy, dims.y, geo.y, cell);
+      int x0, x1;
+      if (!ff_row_cells(xe, xe, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
+      const uint row = ff_cell_index(0, cy, cz, dims.x, dims.y);
+      const uint b = start[row + (uint)x0], en = start[row + (uint)x1 + 1u];
+      for (uint k = b; k < en; ++k) {
+        const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
+        const float d2 = FF_DOT(d, d);
+        const float w = ff_poly6(d2, r2, coef);
+        if (w <= 0.0f) continue;
+        fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
+        wsum += w;
+        vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+      }
     }
+  }
   if (wsum <= 0.0f) return;
   const float scale = per_density ? 1.0f / rho[e] : unit_scale;
   const float kk = wv * wsum * scale;
@@ -63,5 +77,5 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
   const float ry = ay[e] + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
   const float rz = az[e] + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
   ax[e] = rx, ay[e] = ry, az[e] = rz;
-  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) atomic_or(bad, 1);
+  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
 }

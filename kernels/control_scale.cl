@@ -1,42 +1,63 @@
 // control_scale.cl - phase "control scale": the density scale s_i of every
 // control particle (eq. 5) and u_bar, the kernel-weighted mean fluid velocity
-// around it (for the fluid feedback). The fluid is found through an index grid
-// of cell size = the control radius (order[] maps sorted slots to particles).
-// Mirrors Controller::computeScale in src/control/controller.cpp.
+// around it (for the fluid feedback). The fluid, sorted by its grid (cell h),
+// is read in the grid's rows within reach of the control particle, 8
+// consecutive sorted positions at a time: position k adds to lane k mod 8,
+// and the lanes combine by ff_lane_sum8. Mirrors Controller::computeScale in
+// src/control/controller.cpp. The fluid buffers hold a multiple of 8 floats.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_control.h"
 #include "ff_grid.h"
 #include "ff_sph.h"
 
+float ff_total8(float8 v) {
+  return ff_lane_sum8(v.s0, v.s1, v.s2, v.s3, v.s4, v.s5, v.s6, v.s7);
+}
+
 __kernel void control_scale(__global const float* cx, __global const float* cy, __global const float* cz,
                             uint nc, __global const float* fx, __global const float* fy,
                             __global const float* fz, __global const float* fvx, __global const float* fvy,
-                            __global const float* fvz, __global const uint* order, __global const uint* start,
-                            float4 geo, int4 dims, float radius, float volume, __global float* s_out,
+                            __global const float* fvz, __global const uint* start, float4 geo, int4 dims,
+                            float cell, float radius, float volume, __global float* s_out,
                             __global float* ux_out, __global float* uy_out, __global float* uz_out,
-                            __global int* bad) {
+                            __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= nc) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
   const float px = cx[i], py = cy[i], pz = cz[i];
-  uint b[9], e[9];
-  ff_grid_ranges(start, ff_cell_coord(px, geo.x, geo.w, dims.x), ff_cell_coord(py, geo.y, geo.w, dims.y),
-                 ff_cell_coord(pz, geo.z, geo.w, dims.z), dims.x, dims.y, dims.z, b, e);
-  float sum = 0.0f, ux = 0.0f, uy = 0.0f, uz = 0.0f;
-  for (int r = 0; r < 9; ++r)
-    for (uint k = b[r]; k < e[r]; ++k) {
-      const uint j = order[k];
-      const float dx = px - fx[j], dy = py - fy[j], dz = pz - fz[j];
-      const float w = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
-      if (w <= 0.0f) continue;
-      sum += w;
-      ux += w * fvx[j], uy += w * fvy[j], uz += w * fvz[j];
+  const float reach = ff_query_reach(radius, cell);
+  const int z0 = ff_cell_coord(pz - reach, geo.z, geo.w, dims.z),
+            z1 = ff_cell_coord(pz + reach, geo.z, geo.w, dims.z);
+  const int y0 = ff_cell_coord(py - reach, geo.y, geo.w, dims.y),
+            y1 = ff_cell_coord(py + reach, geo.y, geo.w, dims.y);
+  const int8 iota = (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+  float8 sum = (float8)(0.0f), ux = sum, uy = sum, uz = sum;
+  for (int z = z0; z <= z1; ++z) {
+    const float gz = ff_slab_gap(pz, pz, z, dims.z, geo.z, cell);
+    for (int y = y0; y <= y1; ++y) {
+      const float gy = ff_slab_gap(py, py, y, dims.y, geo.y, cell);
+      int x0, x1;
+      if (!ff_row_cells(px, px, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
+      const uint row = ff_cell_index(0, y, z, dims.x, dims.y);
+      const uint b = start[row + (uint)x0], e = start[row + (uint)x1 + 1u];
+      for (uint k = b & ~7u; k < e; k += 8u) {
+        const float8 dx = px - vload8(0, fx + k), dy = py - vload8(0, fy + k), dz = pz - vload8(0, fz + k);
+        const int8 kk = iota + (int)k;
+        const int8 in = (kk >= (int)b) & (kk < (int)e);
+        const float8 w = select((float8)(0.0f), ff_poly6_8(dx * dx + dy * dy + dz * dz, r2, coef), in);
+        sum += w;
+        ux += w * vload8(0, fvx + k), uy += w * vload8(0, fvy + k), uz += w * vload8(0, fvz + k);
+      }
     }
-  const float rho_hat = volume * sum;
+  }
+  const float total = ff_total8(sum);
+  const float rho_hat = volume * total;
   const float s = ff_control_scale(rho_hat);
   // Where the kernel is only partly filled the missing part counts as still air.
-  const float norm = sum > 0.0f ? volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
+  const float norm = total > 0.0f ? volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
+  const float u[3] = {ff_total8(ux) * norm, ff_total8(uy) * norm, ff_total8(uz) * norm};
   s_out[i] = s;
-  ux_out[i] = ux * norm, uy_out[i] = uy * norm, uz_out[i] = uz * norm;
-  if (!isfinite(s) || !isfinite(ux * norm) || !isfinite(uy * norm) || !isfinite(uz * norm)) atomic_or(bad, 1);
+  ux_out[i] = u[0], uy_out[i] = u[1], uz_out[i] = u[2];
+  if (!isfinite(s) || !isfinite(u[0]) || !isfinite(u[1]) || !isfinite(u[2])) ff_report_nonfinite(bad, tag);
 }

@@ -2,15 +2,19 @@
 // term (the walls' shares combined as in ff_combine_wall_fractions),
 // p_i = k (rho_i - rho0). Mirrors computeDensityPressure in
 // src/cpu/fluid_cpu.cpp term by term and in the same summation order
-// (neighbour rows z-major, then y, j ascending; walls x, y, z, low then high).
+// (neighbours in ascending sorted order; walls x, y, z, low then high). The
+// grid's cells are at least h wide, so the 27 cells around a particle hold its
+// neighbours (pruning them to the sphere, as the OpenMP backend does, changes
+// no sum but made PoCL's vectorised work-groups slower here).
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_grid.h"
 #include "ff_sph.h"
 
 __kernel void density(__global const float* x, __global const float* y, __global const float* z, uint n,
                       __global const uint* start, float4 geo, int4 dims, float h, float mass, float rho0,
                       float gas_k, float4 box_lo, float4 box_hi, __global float* rho_out,
-                      __global float* p_out, __global int* bad) {
+                      __global float* p_out, __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float h2 = h * h, coef = ff_poly6_coef(h);
@@ -36,5 +40,5 @@ __kernel void density(__global const float* x, __global const float* y, __global
   const float p = ff_pressure(rho, rho0, gas_k);
   rho_out[i] = rho;
   p_out[i] = p;
-  if (!isfinite(rho) || !isfinite(p)) atomic_or(bad, 1);
+  if (!isfinite(rho) || !isfinite(p)) ff_report_nonfinite(bad, tag);
 }

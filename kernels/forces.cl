@@ -1,9 +1,10 @@
 // forces.cl - phase "forces": symmetric pressure force / rho_i with the
 // analytic wall's pressure, viscosity (Laplacian of the viscosity kernel) and
-// gravity. Mirrors addPressureAccel + addViscosityGravity of
-// src/cpu/fluid_cpu.cpp: one neighbour walk with the two loops' sums kept
-// apart, each in the CPU's order, and the same final additions.
+// gravity. Mirrors computeWcsphForces of src/cpu/fluid_cpu.cpp: one neighbour
+// walk (ascending sorted order; the 27 cells around the particle, as
+// density.cl) with the two sums kept apart, and the same final additions.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_grid.h"
 #include "ff_sph.h"
 
@@ -12,7 +13,7 @@ __kernel void forces(__global const float* x, __global const float* y, __global 
                      __global const float* rho, __global const float* p, uint n, __global const uint* start,
                      float4 geo, int4 dims, float h, float mass, float mu, float4 gravity, float4 box_lo,
                      float4 box_hi, __global float* ax, __global float* ay, __global float* az,
-                     __global int* bad) {
+                     __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float grad_coef = ff_spiky_grad_coef(h), lap_coef = ff_visc_lap_coef(h);
@@ -48,9 +49,9 @@ __kernel void forces(__global const float* x, __global const float* y, __global 
     if (dhi < h) a[d] += -1.0f * ff_wall_pressure_accel(dhi, h, pi, rhoi);
   }
   const float inv = mu / rhoi;
-  // As the CPU: a starts at 0, gets the pressure part, then viscosity + gravity.
+  // As the CPU: the pressure part (from 0), then viscosity + gravity.
   float rx = 0.0f + a[0], ry = 0.0f + a[1], rz = 0.0f + a[2];
   rx += fx * inv + gravity.x, ry += fy * inv + gravity.y, rz += fz * inv + gravity.z;
   ax[i] = rx, ay[i] = ry, az[i] = rz;
-  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) atomic_or(bad, 1);
+  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
 }

@@ -1,37 +1,11 @@
 // grid.cl - phase "grid": the uniform neighbour grid by counting sort
-// (bounding box, cell count, prefix scan, scatter, rank, reorder), the same
+// (cell count, prefix scan, scatter, rank, reorder), the same
 // grid as src/cpu/uniform_grid.cpp builds. The scatter is made stable by
 // ranking each point among the points of its cell by input index, so the
 // sorted order (and every neighbour sum after it) does not depend on the
 // order in which atomics happen to run.
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_grid.h"
-
-// Per work-group min and max of the points: partial[6 g .. 6 g + 5] =
-// (min x, min y, min z, max x, max y, max z). Groups stride over the points.
-// Local size must be a power of two.
-__kernel void grid_bbox(__global const float* x, __global const float* y, __global const float* z, uint n,
-                        __global float* partial, __local float* tmp) {
-  const uint lid = get_local_id(0), ls = get_local_size(0);
-  float lo0 = INFINITY, lo1 = INFINITY, lo2 = INFINITY, hi0 = -INFINITY, hi1 = -INFINITY, hi2 = -INFINITY;
-  for (uint i = get_global_id(0); i < n; i += get_global_size(0)) {
-    const float a = x[i], b = y[i], c = z[i];
-    lo0 = fmin(lo0, a), lo1 = fmin(lo1, b), lo2 = fmin(lo2, c);
-    hi0 = fmax(hi0, a), hi1 = fmax(hi1, b), hi2 = fmax(hi2, c);
-  }
-  tmp[6 * lid + 0] = lo0, tmp[6 * lid + 1] = lo1, tmp[6 * lid + 2] = lo2;
-  tmp[6 * lid + 3] = hi0, tmp[6 * lid + 4] = hi1, tmp[6 * lid + 5] = hi2;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint s = ls / 2; s > 0; s >>= 1) {
-    if (lid < s) {
-      for (int k = 0; k < 3; ++k) tmp[6 * lid + k] = fmin(tmp[6 * lid + k], tmp[6 * (lid + s) + k]);
-      for (int k = 3; k < 6; ++k) tmp[6 * lid + k] = fmax(tmp[6 * lid + k], tmp[6 * (lid + s) + k]);
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid == 0)
-    for (int k = 0; k < 6; ++k) partial[6 * get_group_id(0) + k] = tmp[k];
-}
 
 // Cell of every point, and the number of points per cell (counts zeroed before).
 __kernel void grid_count(__global const float* x, __global const float* y, __global const float* z, uint n,

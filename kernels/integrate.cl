@@ -2,12 +2,13 @@
 // (no particle moves more than max_step_fraction * h per step) and the
 // container clamp. Mirrors integrateFluid in src/cpu/fluid_cpu.cpp.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_compat.h"
 
 __kernel void integrate(__global float* x, __global float* y, __global float* z, __global float* vx,
                         __global float* vy, __global float* vz, __global const float* ax,
                         __global const float* ay, __global const float* az, uint n, float dt, float vmax,
-                        float eps, float4 box_lo, float4 box_hi, __global int* bad) {
+                        float eps, float4 box_lo, float4 box_hi, __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   float v[3] = {vx[i] + dt * ax[i], vy[i] + dt * ay[i], vz[i] + dt * az[i]};
@@ -27,5 +28,5 @@ __kernel void integrate(__global float* x, __global float* y, __global float* z,
   vx[i] = v[0], vy[i] = v[1], vz[i] = v[2];
   int ok = 1;
   for (int d = 0; d < 3; ++d) ok = ok && isfinite(p[d]) && isfinite(v[d]);
-  if (!ok) atomic_or(bad, 1);
+  if (!ok) ff_report_nonfinite(bad, tag);
 }

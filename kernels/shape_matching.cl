@@ -5,6 +5,7 @@
 // (eq. 8), the damping and fluid feedback, eq. 7, integration and the
 // container clamp. Mirrors src/control/shape_matching.cpp and controller.cpp.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_check.h"
 #include "ff_control.h"
 #include "ff_rotation.h"
 
@@ -57,7 +58,7 @@ __kernel void sm_particles(__global float* x, __global float* y, __global float*
                            __global const float* cv_y, __global const float* cv_z, __global const float* ux,
                            __global const float* uy, __global const float* uz, float h, float alpha,
                            float feedback, float damping, float4 box_lo, float4 box_hi, __global float* gx,
-                           __global float* gy, __global float* gz, __global int* bad) {
+                           __global float* gy, __global float* gz, __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint b = of_start[i], e = of_start[i + 1];
@@ -96,5 +97,5 @@ __kernel void sm_particles(__global float* x, __global float* y, __global float*
   vx[i] = v3[0], vy[i] = v3[1], vz[i] = v3[2];
   int ok = 1;
   for (int d = 0; d < 3; ++d) ok = ok && isfinite(c3[d]) && isfinite(v3[d]);
-  if (!ok) atomic_or(bad, 1);
+  if (!ok) ff_report_nonfinite(bad, tag);
 }

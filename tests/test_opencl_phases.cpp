@@ -24,6 +24,7 @@
 #include "core/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "cpu/uniform_grid.h"
+#include "ff_control.h"
 #include "ff_grid.h"
 #include "host/backend_factory.h"
 #include "host/backend_opencl.h"
@@ -158,7 +159,8 @@ TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
 
   // Density and pressure.
   cpu.computeDensity(), ocl.computeDensity();
-  ASSERT_TRUE(cpu.finiteAfter(ff::Phase::Density) && ocl.finiteAfter(ff::Phase::Density));
+  ASSERT_EQ(cpu.firstNonFinite(), ff::Phase::Count);
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   std::vector<float> rho, pr;
   ocl.readDensity(rho, pr);
   expectClose("density", cpu.fluid().rho, rho);
@@ -166,22 +168,16 @@ TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
 
   // Pressure + viscosity + wall + gravity.
   cpu.computeForces(), ocl.computeForces();
-  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::Forces));
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   std::vector<float> ax, ay, az;
   ocl.readAccel(ax, ay, az);
   expectClose("forces ax", cpu.fluid().ax, ax);
   expectClose("forces ay", cpu.fluid().ay, ay);
   expectClose("forces az", cpu.fluid().az, az);
 
-  // Control scale s_i and u_bar; the fluid's index grid with cell = control radius.
+  // Control scale s_i and u_bar (over the fluid as the grid phase sorted it).
   cpu.computeControlScale(), ocl.computeControlScale();
-  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ControlScale));
-  {
-    ff::UniformGrid g;
-    g.build(fc.size(), fc.x.data(), fc.y.data(), fc.z.data(), params.control.radius);
-    expectGridEqual("fluid grid (control radius)", g, ocl.readGrid(ff::OpenClBackend::GridKind::FluidControl),
-                    true);
-  }
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   ff::ControlSet cs;
   ff::ControlFields cf;
   ocl.readControl(cs, cf);
@@ -193,13 +189,15 @@ TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
 
   // Control forces (added to the accelerations); the control particles' grid.
   cpu.applyControlForces(dt), ocl.applyControlForces(dt);
-  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ControlForces));
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   {
     const ff::ControlSet& c = cpu.controller().set();
     ff::UniformGrid g;
-    g.build(c.size(), c.x.data(), c.y.data(), c.z.data(), params.control.radius);
-    expectGridEqual("control grid (control radius)", g, ocl.readGrid(ff::OpenClBackend::GridKind::Control),
-                    true);
+    g.build(c.size(), c.x.data(), c.y.data(), c.z.data(), params.control.radius / FF_CONTROL_GRID_DIVISIONS,
+            p->scene.container.min.data(), p->scene.container.max.data(), ff::gridCellCap(c.size()));
+    const ff::OpenClBackend::GridSnapshot snap = ocl.readGrid(ff::OpenClBackend::GridKind::Control);
+    expectGridEqual("control grid", g, snap, true);
+    expectGridEqual("control grid (OpenMP backend)", cpu.controller().controlGrid(), snap, true);
   }
   ocl.readAccel(ax, ay, az);
   expectClose("with control ax", cpu.fluid().ax, ax);
@@ -208,7 +206,7 @@ TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
 
   // Integration.
   cpu.integrate(dt), ocl.integrate(dt);
-  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::Integrate));
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   ocl.readFluid(fo);
   fc = cpu.fluid().s;
   expectClose("integrated x", fc.x, fo.x);
@@ -222,7 +220,7 @@ TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
   const float sm_dt = params.shape.time_step;
   EXPECT_EQ(cpu.shapeMatching(sm_dt), 1);
   EXPECT_EQ(ocl.shapeMatching(sm_dt), 1);
-  ASSERT_TRUE(ocl.finiteAfter(ff::Phase::ShapeMatching));
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   std::vector<ff_quat> q;
   ocl.readClusterRotations(q);
   const std::vector<ff_quat>& qref = cpu.controller().clusterRotations();
@@ -285,7 +283,7 @@ TEST(OpenClPhases, StableSortKeepsInputOrderWithinCells) {
   // Dense: many points per cell, given in scrambled order. The order within a
   // cell must be the input order (what UniformGrid's sequential scatter gives),
   // whatever order the device's atomics run in. Sparse: points spread over a
-  // metre, so the grid has ~600k cells and the prefix scan three levels.
+  // metre, so the grid has ~50k cells (gridCellCap) and the prefix scan two levels.
   auto ocl = openClBackend();
   ASSERT_TRUE(ocl);
   ff::Params params;
@@ -297,7 +295,8 @@ TEST(OpenClPhases, StableSortKeepsInputOrderWithinCells) {
     std::uniform_real_distribution<float> u(0.01f, 0.01f + extent);
     for (int i = 0; i < 5000; ++i) f.push(u(rng), u(rng), u(rng), 0.0f, 0.0f, 0.0f);
     ff::UniformGrid g;
-    g.build(f.size(), f.x.data(), f.y.data(), f.z.data(), params.fluid.smoothing_radius);
+    g.build(f.size(), f.x.data(), f.y.data(), f.z.data(), params.fluid.smoothing_radius, box.min.data(),
+            box.max.data(), ff::gridCellCap(f.size()));
     std::vector<uint32_t> ids(g.order().size());
     for (size_t k = 0; k < ids.size(); ++k) ids[k] = f.id[g.order()[k]];
     for (int rep = 0; rep < 2; ++rep) {

@@ -2,7 +2,8 @@
 // (the OpenMP backend, tests) and as OpenCL C 1.2 (the kernels).
 //
 // Rules for code in kernels/common/:
-//   * only `float`, `int`, `uint` and the ff_float3 / ff_quat helpers below;
+//   * only `float`, `int`, `uint`, the ff_float3 / ff_quat helpers below and
+//     the value type T of FF_GENERIC formulas;
 //   * every function is FF_FN (inline, no state);
 //   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX so both sides call
 //     the single-precision functions.
@@ -24,6 +25,8 @@ typedef float4 ff_quat; /* (x, y, z, w) */
 #define FF_FMAX(a, b) fmax((a), (b))
 #define FF_DOT(a, b) dot((a), (b))
 #define FF_CROSS(a, b) cross((a), (b))
+#define FF_ZERO_OF(T) ((T)(0.0f))
+#define FF_GENERIC(def, name) def(float, name) def(float8, name##_8)
 #else
 #include <cmath>
 #include <cstdint>
@@ -73,7 +76,20 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
 #define FF_DOT(a, b) ((a).x * (b).x + (a).y * (b).y + (a).z * (b).z)
 #define FF_CROSS(a, b) \
   FF_F3((a).y*(b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z, (a).x * (b).y - (a).y * (b).x)
+#define FF_ZERO_OF(T) (T{})
+#define FF_GENERIC(def, name) \
+  template <class FF_T>       \
+  def(FF_T, name)
 #endif
+
+/* Formulas that the neighbour loops evaluate are written once, as a macro
+ * def(T, name) for a value type T, and stamped out by FF_GENERIC(def, name):
+ * in OpenCL C as name (float) and name_8 (float8); in C++ as the template
+ * name<T>, on float and on the OpenMP backend's 8-lane vectors
+ * (src/cpu/simd8.h). Vectors evaluate them lane by lane with the same
+ * operations. Such a body uses only + - * /, comparisons combined with & and
+ * the selection c ? a : FF_ZERO_OF(T) (for vectors both sides are computed
+ * and the unselected lanes dropped, so those must not trap: IEEE floats do not). */
 
 #define FF_PI 3.14159265358979323846f
 

@@ -10,6 +10,19 @@ FF_FN float ff_control_scale(float rho_hat) {
   return 1.0f - FF_FMIN(1.0f, rho_hat);
 }
 
+/* The control particles' grid has cells of radius / FF_CONTROL_GRID_DIVISIONS
+ * (queries prune it to the sphere, ff_row_cells), over the container. */
+#define FF_CONTROL_GRID_DIVISIONS 2
+
+/* A sum over the fluid around a control particle runs in 8 lanes: the fluid
+ * particle at sorted position k adds to lane k mod 8 (in ascending k), and the
+ * lanes combine in this fixed order. Both backends load 8 consecutive fluid
+ * particles at a time this way (the OpenMP backend with 8-lane vectors, the
+ * kernels with float8), so the sums agree bit for bit. */
+FF_FN float ff_lane_sum8(float a0, float a1, float a2, float a3, float a4, float a5, float a6, float a7) {
+  return ((a0 + a4) + (a2 + a6)) + ((a1 + a5) + (a3 + a7));
+}
+
 /* Share of a fluid particle's weight that the control carries. wsum * v_c is
  * the part of the particle's neighbourhood filled by control particles of rest
  * volume v_c (wsum = sum_i W(|p_i - x_e|)): 1 deep inside the shape, 1/2 on its
@@ -27,10 +40,15 @@ FF_FN float ff_control_full_coverage(float v_c, float r, float coef) {
   return ff_poly6_wall_fraction(FF_CBRT(v_c), r, coef);
 }
 
-/* Eq. 4, one control particle's term: w_a s_i (p_i - x_e)/|p_i - x_e| W.
- * d = p_i - x_e, r = |d|. */
+/* Eq. 4, one control particle's term: w_a s_i (p_i - x_e)/|p_i - x_e| W, as
+ * d * ff_attraction_factor(r, s, w) with d = p_i - x_e, r = |d|. */
+#define FF_ATTRACTION_FACTOR_DEF(T, name)          \
+  FF_FN T name(T r, float s, T w) {                \
+    return r > 1e-12f ? s * w / r : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_ATTRACTION_FACTOR_DEF, ff_attraction_factor)
 FF_FN ff_float3 ff_attraction_term(ff_float3 d, float r, float s, float w) {
-  return r > 1e-12f ? d * (s * w / r) : FF_F3(0.0f, 0.0f, 0.0f);
+  return d * ff_attraction_factor(r, s, w);
 }
 
 /* Eq. 6 integrated implicitly. Eq. 6 is a linear relaxation of v_e towards the

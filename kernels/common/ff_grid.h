@@ -40,4 +40,43 @@ FF_FN void ff_grid_ranges(FF_GLOBAL const uint* start, int cx, int cy, int cz, i
   }
 }
 
+/* ---------------------------------------------------------------------------
+ * Pruned neighbour queries: the cells that points within `reach` of a query
+ * box [lo, hi] (a point: lo = hi) can lie in, for any cell size. Rows of cells
+ * along x (contiguous in the sorted order) are visited z-major, then y; a row
+ * whose y-z slab is farther than `reach` from the box is skipped, and a row is
+ * cut to the chord of the sphere-swept box. The sorted positions visited
+ * ascend, so a sum over the points within reach, in visiting order, is the
+ * same however much is pruned. `reach` must exceed the query radius by a
+ * margin (ff_query_reach) that covers the rounding of the cell assignment.
+ * ------------------------------------------------------------------------- */
+
+/* The radius to prune with: `radius` plus a thousandth of a cell. */
+FF_FN float ff_query_reach(float radius, float cell) {
+  return radius + 1.0e-3f * cell;
+}
+
+/* Distance along one axis from [lo, hi] to the slab of cell c (of n cells,
+ * origin o): 0 where they overlap. The outermost cells reach to infinity,
+ * since the cell assignment clamps points outside the grid into them. */
+FF_FN float ff_slab_gap(float lo, float hi, int c, int n, float o, float cell) {
+  const float a = c <= 0 ? -1.0e30f : o + (float)c * cell;
+  const float b = c >= n - 1 ? 1.0e30f : o + (float)(c + 1) * cell;
+  const float below = a - hi, above = lo - b; /* at most one is positive */
+  return below > 0.0f ? below : (above > 0.0f ? above : 0.0f);
+}
+
+/* The cells x0..x1 of a row at distance gap_yz^2 = g2 (in y and z) from the
+ * box, that can hold points within reach of [lo_x, hi_x]. Returns 0 (and no
+ * cells) when the row is out of reach. */
+FF_FN int ff_row_cells(float lo_x, float hi_x, float g2, float reach, float o, float inv_cell, int n, int* x0,
+                       int* x1) {
+  const float r2 = reach * reach;
+  if (g2 > r2) return 0;
+  const float chord = FF_SQRT(r2 - g2);
+  *x0 = ff_cell_coord(lo_x - chord, o, inv_cell, n);
+  *x1 = ff_cell_coord(hi_x + chord, o, inv_cell, n);
+  return 1;
+}
+
 #endif /* FF_GRID_H */

@@ -16,22 +16,28 @@ FF_FN float ff_visc_lap_coef(float h) {
 }
 
 /* W_poly6 from the squared distance r2 (0 outside the support). */
-FF_FN float ff_poly6(float r2, float h2, float coef) {
-  float d = h2 - r2;
-  return r2 < h2 ? coef * d * d * d : 0.0f;
-}
+#define FF_POLY6_DEF(T, name)                          \
+  FF_FN T name(T r2, float h2, float coef) {           \
+    T d = h2 - r2;                                     \
+    return r2 < h2 ? coef * d * d * d : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_POLY6_DEF, ff_poly6)
 
 /* Magnitude factor g of the spiky gradient: grad W(r_ij) = -g * r_ij
  * where r_ij = x_i - x_j and g = coef * (h - r)^2 / r. Zero for r = 0 or r >= h. */
-FF_FN float ff_spiky_grad_factor(float r, float h, float coef) {
-  float d = h - r;
-  return (r > 1e-12f && r < h) ? coef * d * d / r : 0.0f;
-}
+#define FF_SPIKY_GRAD_FACTOR_DEF(T, name)                               \
+  FF_FN T name(T r, float h, float coef) {                              \
+    T d = h - r;                                                        \
+    return ((r > 1e-12f) & (r < h)) ? coef * d * d / r : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_SPIKY_GRAD_FACTOR_DEF, ff_spiky_grad_factor)
 
 /* Laplacian of the viscosity kernel. */
-FF_FN float ff_visc_lap(float r, float h, float coef) {
-  return r < h ? coef * (h - r) : 0.0f;
-}
+#define FF_VISC_LAP_DEF(T, name)                   \
+  FF_FN T name(T r, float h, float coef) {         \
+    return r < h ? coef * (h - r) : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_VISC_LAP_DEF, ff_visc_lap)
 
 /* Equation of state p = k (rho - rho0). */
 FF_FN float ff_pressure(float rho, float rho0, float k) {

@@ -1,8 +1,10 @@
 #include "control/controller.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "control/shape_matching.h"
+#include "cpu/simd8.h"
 #include "ff_control.h"
 #include "ff_sph.h"
 
@@ -23,41 +25,147 @@ void Controller::reset(ControlSet set) {
   clock_ = 0.0;
 }
 
-void Controller::computeScale(const FluidView& f) {
-  const long n = long(set_.size());
-  if (n == 0) return;
-  const float r = cp_.radius, r2 = r * r, coef = ff_poly6_coef(r);
-  fluid_grid_.build(f.n, f.x, f.y, f.z, r);
-  const auto& order = fluid_grid_.order();
-#pragma omp parallel for schedule(dynamic, 64)
-  for (long i = 0; i < n; ++i) {
-    const float px = set_.x[i], py = set_.y[i], pz = set_.z[i];
-    float sum = 0.0f, ux = 0.0f, uy = 0.0f, uz = 0.0f;
-    fluid_grid_.forEachRange(px, py, pz, [&](uint32_t b, uint32_t e) {
-      for (uint32_t k = b; k < e; ++k) {
-        const uint32_t j = order[k];
-        const float dx = px - f.x[j], dy = py - f.y[j], dz = pz - f.z[j];
-        const float w = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
-        if (w <= 0.0f) continue;
-        sum += w;
-        ux += w * f.vx[j], uy += w * f.vy[j], uz += w * f.vz[j];
-      }
-    });
-    const float rho_hat = f.volume * sum;
-    fields_.s[i] = ff_control_scale(rho_hat);
-    // Kernel-weighted mean fluid velocity; where the kernel is only partly
-    // filled the missing part counts as still air (so it also damps).
-    const float norm = sum > 0.0f ? f.volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
-    fields_.ux[i] = ux * norm, fields_.uy[i] = uy * norm, fields_.uz[i] = uz * norm;
-  }
+namespace {
+
+using simd::f8;
+using simd::i8;
+
+// Unused lanes sit this far away: out of every neighbour's reach.
+constexpr float kFar = 1.0e18f;
+
+std::vector<uint32_t>& threadSpans() {
+  static thread_local std::vector<uint32_t> spans;
+  return spans;
 }
 
-void Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, float* az) {
+struct ScaleSums {
+  float w, ux, uy, uz;
+};
+
+// Control scale sums around the control particle at p: the fluid in the grid
+// ranges within reach, 8 consecutive sorted positions at a time, position k
+// in lane k mod 8 (kernels/control_scale.cl does the same with float8).
+FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const float* x, const float* y,
+                                   const float* z, const float* vx, const float* vy, const float* vz,
+                                   const float p[3], float r, float coef) {
+  std::vector<uint32_t>& spans = threadSpans();
+  grid.rangesNear(p, p, r, spans);
+  const float r2 = r * r;
+  const i8 iota = {0, 1, 2, 3, 4, 5, 6, 7};
+  const f8 zero = simd::splat(0.0f);
+  f8 sum = zero, ux = zero, uy = zero, uz = zero;
+  for (size_t s = 0; s < spans.size(); s += 2) {
+    const uint32_t b = spans[s], e = spans[s + 1];
+    for (uint32_t k = b & ~7u; k < e; k += 8) {
+      const int m = int(std::min<size_t>(8, n - k));
+      const f8 fx = simd::loadN(x + k, m, kFar), fy = simd::loadN(y + k, m, kFar),
+               fz = simd::loadN(z + k, m, kFar);
+      const f8 dx = p[0] - fx, dy = p[1] - fy, dz = p[2] - fz;
+      const i8 kk = iota + int(k);
+      const i8 in = (kk >= int(b)) & (kk < int(e));
+      const f8 w = simd::keep(in, ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef));
+      sum += w;
+      ux += w * simd::loadN(vx + k, m, 0.0f), uy += w * simd::loadN(vy + k, m, 0.0f);
+      uz += w * simd::loadN(vz + k, m, 0.0f);
+    }
+  }
+  auto total = [](f8 v) { return ff_lane_sum8(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]); };
+  return {total(sum), total(ux), total(uy), total(uz)};
+}
+
+// Control force sums of the fluid particles b .. e-1 (sorted positions, at
+// most 8, one row of the fluid grid) as lanes, the control particles in the
+// control grid's ranges within reach broadcast one at a time, in ascending
+// order: each lane sums as kernels/control_forces.cl does for its particle.
+// out: 7 x 8 floats (attraction x, y, z, sum of W, sum of W v x, y, z).
+FF_SIMD_CLONES void forceSums(const float* x, const float* y, const float* z, uint32_t b, uint32_t e,
+                              const UniformGrid& cp_grid, const float* sx, const float* sy, const float* sz,
+                              const float* ss, const float* svx, const float* svy, const float* svz, float r,
+                              float coef, float* out) {
+  const int n = int(e - b);
+  const f8 xe = simd::loadN(x + b, n, kFar), ye = simd::loadN(y + b, n, kFar),
+           ze = simd::loadN(z + b, n, kFar);
+  const float lo[3] = {simd::hmin(xe, n), simd::hmin(ye, n), simd::hmin(ze, n)};
+  const float hi[3] = {simd::hmax(xe, n), simd::hmax(ye, n), simd::hmax(ze, n)};
+  std::vector<uint32_t>& spans = threadSpans();
+  cp_grid.rangesNear(lo, hi, r, spans);
+  const float r2 = r * r;
+  const f8 zero = simd::splat(0.0f);
+  f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
+  for (size_t s = 0; s < spans.size(); s += 2)
+    for (uint32_t k = spans[s]; k < spans[s + 1]; ++k) {
+      const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
+      const f8 d2 = dx * dx + dy * dy + dz * dz;
+      if (!simd::any(d2 < r2)) continue;  // no lane in reach: every term is 0
+      const f8 w = ff_poly6(d2, r2, coef);
+      const f8 a = ff_attraction_factor(simd::sqrt8(d2), ss[k], w);
+      fax += dx * a, fay += dy * a, faz += dz * a;
+      wsum += w;
+      vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+    }
+  const f8 sums[7] = {fax, fay, faz, wsum, vsx, vsy, vsz};
+  for (int k = 0; k < 7; ++k) simd::storeN(out + 8 * k, sums[k], n);
+}
+
+}  // namespace
+
+Controller::SortedFluid Controller::sorted(const FluidView& f) {
+  SortedFluid s;
+  if (f.grid && f.groups) {
+    s.grid = f.grid, s.groups = f.groups;
+    s.x = f.x, s.y = f.y, s.z = f.z, s.vx = f.vx, s.vy = f.vy, s.vz = f.vz;
+    return s;
+  }
+  // A plain particle system: sort a copy by a grid of half the control radius.
+  fluid_grid_.build(f.n, f.x, f.y, f.z, 0.5f * cp_.radius, size_t(1) << 22);
+  const auto& order = fluid_grid_.order();
+  auto gather = [&](const float* in, std::vector<float>& out) {
+    out.resize(f.n);
+    for (size_t k = 0; k < f.n; ++k) out[k] = in[order[k]];
+  };
+  gather(f.x, fx_), gather(f.y, fy_), gather(f.z, fz_), gather(f.vx, fvx_), gather(f.vy, fvy_),
+      gather(f.vz, fvz_);
+  fluid_grid_.rowGroups(8, fluid_groups_);
+  s.grid = &fluid_grid_, s.groups = &fluid_groups_, s.order = order.data();
+  s.x = fx_.data(), s.y = fy_.data(), s.z = fz_.data(), s.vx = fvx_.data(), s.vy = fvy_.data(),
+  s.vz = fvz_.data();
+  return s;
+}
+
+bool Controller::computeScale(const FluidView& f) {
+  const long n = long(set_.size());
+  if (n == 0) return true;
+  const float r = cp_.radius, coef = ff_poly6_coef(r);
+  const SortedFluid sf = sorted(f);
+  int bad = 0;
+#pragma omp parallel for schedule(dynamic, 32) reduction(| : bad)
+  for (long i = 0; i < n; ++i) {
+    const float p[3] = {set_.x[i], set_.y[i], set_.z[i]};
+    const ScaleSums t = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, coef);
+    const float rho_hat = f.volume * t.w;
+    const float s = ff_control_scale(rho_hat);
+    fields_.s[i] = s;
+    // Kernel-weighted mean fluid velocity; where the kernel is only partly
+    // filled the missing part counts as still air (so it also damps).
+    const float norm = t.w > 0.0f ? f.volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
+    const float u[3] = {t.ux * norm, t.uy * norm, t.uz * norm};
+    fields_.ux[i] = u[0], fields_.uy[i] = u[1], fields_.uz[i] = u[2];
+    bad |= std::isfinite(s) && std::isfinite(u[0]) && std::isfinite(u[1]) && std::isfinite(u[2]) ? 0 : 1;
+  }
+  return !bad;
+}
+
+bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, float* az) {
   const size_t n = set_.size();
-  if (n == 0) return;
-  const float r = cp_.radius, r2 = r * r, coef = ff_poly6_coef(r);
+  if (n == 0) return true;
+  const float r = cp_.radius, coef = ff_poly6_coef(r);
+  const SortedFluid sf = sorted(f);
   // Control particles sorted by cell of their own grid, with s and velocity.
-  cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), r);
+  const float cell = r / float(FF_CONTROL_GRID_DIVISIONS);
+  if (bounded_)
+    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell, lo_, hi_, gridCellCap(n));
+  else
+    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell);
   const auto& order = cp_grid_.order();
   for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_}) a->resize(n);
   for (size_t k = 0; k < n; ++k) {
@@ -70,33 +178,81 @@ void Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   const float wa = cp_.attraction, wv = cp_.velocity, gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
   const float full_at = ff_control_full_coverage(cp_volume, r, coef);
-#pragma omp parallel for schedule(static)
-  for (long e = 0; e < long(f.n); ++e) {
-    const float xe = f.x[e], ye = f.y[e], ze = f.z[e];
-    ff_float3 fa = FF_F3(0.0f, 0.0f, 0.0f);
-    float wsum = 0.0f, vsx = 0.0f, vsy = 0.0f, vsz = 0.0f;
-    cp_grid_.forEachRange(xe, ye, ze, [&](uint32_t b, uint32_t end) {
-      for (uint32_t k = b; k < end; ++k) {
-        const ff_float3 d = FF_F3(sx_[k] - xe, sy_[k] - ye, sz_[k] - ze);
-        const float d2 = FF_DOT(d, d);
-        const float w = ff_poly6(d2, r2, coef);
-        if (w <= 0.0f) continue;
-        fa += ff_attraction_term(d, FF_SQRT(d2), ss_[k], w);
-        wsum += w;
-        vsx += w * svx_[k], vsy += w * svy_[k], vsz += w * svz_[k];
-      }
-    });
-    if (wsum <= 0.0f) continue;
-    const float scale = per_density ? 1.0f / (f.rho ? f.rho[e] : f.rest_density) : unit_scale;
-    const float k = wv * wsum * scale;
-    fa = fa * (wa * scale);
-    // Gravity carried by the control (all of it inside the shape).
-    const float held = gc * ff_control_held(wsum, cp_volume, full_at);
-    fa = fa - FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]) * held;
-    ax[e] += fa.x + ff_velocity_force_implicit(wv * vsx * scale, k, f.vx[e], dt);
-    ay[e] += fa.y + ff_velocity_force_implicit(wv * vsy * scale, k, f.vy[e], dt);
-    az[e] += fa.z + ff_velocity_force_implicit(wv * vsz * scale, k, f.vz[e], dt);
+  const std::vector<uint32_t>& groups = *sf.groups;
+  const long ngroups = long(groups.size() / 2);
+  int bad = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
+  for (long g = 0; g < ngroups; ++g) {
+    const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
+    float sums[56];
+    forceSums(sf.x, sf.y, sf.z, b, e, cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data(), svx_.data(),
+              svy_.data(), svz_.data(), r, coef, sums);
+    for (uint32_t k = b; k < e; ++k) {
+      const size_t l = k - b;
+      const float wsum = sums[24 + l];
+      if (wsum <= 0.0f) continue;
+      const size_t i = sf.order ? sf.order[k] : k;
+      const float scale = per_density ? 1.0f / (f.rho ? f.rho[i] : f.rest_density) : unit_scale;
+      const float kv = wv * wsum * scale;
+      ff_float3 fa = FF_F3(sums[l], sums[8 + l], sums[16 + l]) * (wa * scale);
+      // Gravity carried by the control (all of it inside the shape).
+      const float held = gc * ff_control_held(wsum, cp_volume, full_at);
+      fa = fa - FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]) * held;
+      ax[i] += fa.x + ff_velocity_force_implicit(wv * sums[32 + l] * scale, kv, f.vx[i], dt);
+      ay[i] += fa.y + ff_velocity_force_implicit(wv * sums[40 + l] * scale, kv, f.vy[i], dt);
+      az[i] += fa.z + ff_velocity_force_implicit(wv * sums[48 + l] * scale, kv, f.vz[i], dt);
+      bad |= std::isfinite(ax[i]) && std::isfinite(ay[i]) && std::isfinite(az[i]) ? 0 : 1;
+    }
   }
+  return !bad;
+}
+
+size_t Controller::memoryBytes() const {
+  size_t floats = 0, uints = 0;
+  for (const auto* v : {&set_.x,
+                        &set_.y,
+                        &set_.z,
+                        &set_.vx,
+                        &set_.vy,
+                        &set_.vz,
+                        &set_.x0,
+                        &set_.y0,
+                        &set_.z0,
+                        &set_.clusters.rest_cx,
+                        &set_.clusters.rest_cy,
+                        &set_.clusters.rest_cz,
+                        &fields_.s,
+                        &fields_.ux,
+                        &fields_.uy,
+                        &fields_.uz,
+                        &sx_,
+                        &sy_,
+                        &sz_,
+                        &ss_,
+                        &svx_,
+                        &svy_,
+                        &svz_,
+                        &cx_,
+                        &cy_,
+                        &cz_,
+                        &gx_,
+                        &gy_,
+                        &gz_,
+                        &cvx_,
+                        &cvy_,
+                        &cvz_,
+                        &fx_,
+                        &fy_,
+                        &fz_,
+                        &fvx_,
+                        &fvy_,
+                        &fvz_})
+    floats += v->capacity();
+  for (const auto* v : {&set_.clusters.start, &set_.clusters.members, &set_.clusters.of_start,
+                        &set_.clusters.of, &fluid_groups_})
+    uints += v->capacity();
+  return floats * sizeof(float) + uints * sizeof(uint32_t) + q_.capacity() * sizeof(ff_quat) +
+         cp_grid_.memoryBytes() + fluid_grid_.memoryBytes();
 }
 
 int Controller::advance(float dt) {
@@ -105,22 +261,23 @@ int Controller::advance(float dt) {
   int steps = 0;
   const double h = sm_.time_step;
   while (clock_ >= h * (1.0 - 1e-9)) {
-    shapeMatchStep();
+    if (!shapeMatchStep()) sm_finite_ = false;
     clock_ -= h;
     ++steps;
   }
   return steps;
 }
 
-void Controller::shapeMatchStep() {
+bool Controller::shapeMatchStep() {
   const long n = long(set_.size());
-  if (n == 0) return;
+  if (n == 0) return true;
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);
   clusterGoals(set_, q_, cx_, cy_, cz_, gx_, gy_, gz_);
   clusterVelocities(set_, cvx_, cvy_, cvz_);
   const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback, damp = sm_.damping;
   const Clusters& cl = set_.clusters;
-#pragma omp parallel for schedule(static)
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
@@ -144,7 +301,12 @@ void Controller::shapeMatchStep() {
     }
     set_.x[i] = nx.x, set_.y[i] = nx.y, set_.z[i] = nx.z;
     set_.vx[i] = v.x, set_.vy[i] = v.y, set_.vz[i] = v.z;
+    bad |= std::isfinite(nx.x) && std::isfinite(nx.y) && std::isfinite(nx.z) && std::isfinite(v.x) &&
+                   std::isfinite(v.y) && std::isfinite(v.z)
+               ? 0
+               : 1;
   }
+  return !bad;
 }
 
 void Controller::step(const FluidView& f, float dt, float* ax, float* ay, float* az) {

@@ -19,7 +19,13 @@ struct FluidView {
   size_t n = 0;
   const float *x = nullptr, *y = nullptr, *z = nullptr;
   const float *vx = nullptr, *vy = nullptr, *vz = nullptr;
-  float volume = 0.0f;         // V_e of eq. 5: the rest volume of one particle
+  float volume = 0.0f;  // V_e of eq. 5: the rest volume of one particle
+  // Optional: a grid whose ranges index these arrays directly (the arrays are
+  // sorted by it, cells of any size) and groups of up to 8 consecutive
+  // particles in one row of its cells (UniformGrid::rowGroups). Without it
+  // the controller sorts a copy of the fluid itself.
+  const UniformGrid* grid = nullptr;
+  const std::vector<uint32_t>* groups = nullptr;
   const float* rho = nullptr;  // per-particle density; only read with ControlForceUnits::ForceDensity
   float rest_density = 1.0f;   // used instead of rho when rho is null
   float mass = 1.0f;           // particle mass; only read with ControlForceUnits::Force
@@ -37,16 +43,24 @@ class Controller {
   bool active() const { return set_.size() > 0; }
 
   // Phase "control scale": s_i (eq. 5) and the fluid velocity around each
-  // control particle, for the feedback.
-  void computeScale(const FluidView& f);
+  // control particle, for the feedback. False if a value is not finite.
+  bool computeScale(const FluidView& f);
   // Phase "control forces": adds the accelerations of eq. 4 and eq. 6 to a*.
   // Eq. 6 is integrated implicitly over dt (see ff_velocity_force_implicit).
-  void addForces(const FluidView& f, float dt, float* ax, float* ay, float* az);
+  // False if a value is not finite.
+  bool addForces(const FluidView& f, float dt, float* ax, float* ay, float* az);
   // Phase "shape matching": advances the control particles' own clock by dt and
   // runs the shape-matching steps that fall due. Returns how many ran.
   int advance(float dt);
   // One shape-matching step of sm.time_step: feedback, eq. 7-9, integration.
-  void shapeMatchStep();
+  // False if a value is not finite.
+  bool shapeMatchStep();
+  // True when no shape-matching step since the last call wrote a NaN or Inf.
+  bool takeFinite() {
+    const bool ok = sm_finite_;
+    sm_finite_ = true;
+    return ok;
+  }
 
   // All three phases for one fluid step; for embedding in another solver.
   void step(const FluidView& f, float dt, float* ax, float* ay, float* az);
@@ -58,6 +72,9 @@ class Controller {
   const std::vector<float>& goalY() const { return gy_; }
   const std::vector<float>& goalZ() const { return gz_; }
   double clock() const { return clock_; }
+  // The control particles' grid of the last addForces (cells of radius / FF_CONTROL_GRID_DIVISIONS).
+  const UniformGrid& controlGrid() const { return cp_grid_; }
+  size_t memoryBytes() const;
 
  private:
   ControlParams cp_;
@@ -66,8 +83,20 @@ class Controller {
   ControlFields fields_;
   bool bounded_ = false;
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
+  // The fluid sorted by a grid: the view's own when it has one, else a copy.
+  struct SortedFluid {
+    const UniformGrid* grid = nullptr;
+    const std::vector<uint32_t>* groups = nullptr;
+    const float *x = nullptr, *y = nullptr, *z = nullptr, *vx = nullptr, *vy = nullptr, *vz = nullptr;
+    const uint32_t* order = nullptr;  // sorted position -> view index (null: the same)
+  };
+  SortedFluid sorted(const FluidView& f);
+
   double clock_ = 0.0;  // time not yet consumed by shape-matching steps
+  bool sm_finite_ = true;
   UniformGrid cp_grid_, fluid_grid_;
+  std::vector<uint32_t> fluid_groups_;
+  std::vector<float> fx_, fy_, fz_, fvx_, fvy_, fvz_;       // the fluid in fluid_grid_ order (no view grid)
   std::vector<float> sx_, sy_, sz_, ss_, svx_, svy_, svz_;  // control particles in cp_grid_ order
   std::vector<ff_quat> q_;
   std::vector<float> cx_, cy_, cz_, gx_, gy_, gz_, cvx_, cvy_, cvz_;

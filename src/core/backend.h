@@ -2,6 +2,7 @@
 // host for the OpenMP backend, on the device for OpenCL) and runs each phase
 // of a step on it. Simulation calls the phases in order and times them.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -48,8 +49,24 @@ class Backend {
   virtual int shapeMatching(float dt) = 0;
   virtual StepMetrics computeMetrics() = 0;
 
-  // True when every value the phase wrote is finite.
-  virtual bool finiteAfter(Phase phase) = 0;
+  // The first phase, since the last call, that wrote a NaN or Inf (Phase::Count
+  // when none did), and the substep it ran in (0-based, counted in `substep`
+  // when not null); clears the record. The phases check their own outputs as
+  // they write them; the OpenCL backend reads this back once per call (one int),
+  // so Simulation asks once per step.
+  virtual Phase firstNonFinite(int* substep = nullptr) = 0;
+
+  // Profiling: when on (the default), every phase waits for its work to finish,
+  // so that timing a phase call measures the phase. When off, an OpenCL phase
+  // only enqueues its kernels and the device's time is counted by whichever
+  // later call waits for results (the metrics phase, which reads its sums back).
+  // The OpenMP backend always runs a phase to completion.
+  virtual void setProfiling(bool on) { (void)on; }
+
+  // Bytes the backend holds for the run: every particle array, grid, control
+  // and metrics buffer (capacity, on the host for the OpenMP backend, on the
+  // device for OpenCL), not code or the OpenCL runtime's own memory.
+  virtual size_t memoryBytes() const = 0;
 
   // Copies of the state, in the backend's current (cell-sorted) order.
   virtual void readFluid(FluidState& out) = 0;

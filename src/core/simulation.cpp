@@ -42,14 +42,16 @@ void Simulation::timed(Phase p, F&& f) {
   const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   phase_ms_[size_t(p)] += ms;
   last_step_ms_[size_t(p)] += ms;
-  check(p);
 }
 
-void Simulation::check(Phase p) {
-  if (backend_->finiteAfter(p)) return;
+void Simulation::check(long step, double time, int substeps) {
+  int substep = 0;
+  const Phase p = backend_->firstNonFinite(&substep);
+  if (p == Phase::Count) return;
   std::ostringstream os;
-  os << "step " << step_ << " (t = " << time_ << " s): a value became NaN or Inf in phase '" << phaseName(p)
-     << "'";
+  os << "step " << step << " (t = " << time << " s";
+  if (substeps > 1) os << ", substep " << substep + 1 << " of " << substeps;
+  os << "): a value became NaN or Inf in phase '" << phaseName(p) << "'";
   throw Error(os.str());
 }
 
@@ -77,9 +79,14 @@ void Simulation::step() {
     timed(Phase::Integrate, [&] { backend_->integrate(dt); });
     timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
   }
+  // One check per step (on OpenCL one int read back): the phase that first
+  // wrote a NaN or Inf, in this step's phase and substep order.
+  const long step = step_;
+  const double time = time_;
   ++step_;
   time_ += double(fp.time_step);
   timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
+  check(step, time, n);
   metrics_.step = step_;
   metrics_.time = time_;
   metrics_.substeps = n;

@@ -40,6 +40,12 @@ class Simulation {
   size_t targetVoxelisations() const { return cache_.voxelisations(); }
   long controlledCount() const { return controlled_; }
 
+  // Profiling (the default): every phase waits for its work, so phaseMs()
+  // times each phase. Off: an OpenCL phase only enqueues its kernels, and the
+  // device time of the whole step is counted in the metrics phase, which waits
+  // for its results (the total stays right, the split does not).
+  void setProfiling(bool on) { backend_->setProfiling(on); }
+
   // Accumulated milliseconds per phase and the number of steps they cover.
   const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
   // Milliseconds per phase of the last step alone (all its substeps).
@@ -52,7 +58,8 @@ class Simulation {
   void applySchedule();
   template <class F>
   void timed(Phase p, F&& f);
-  void check(Phase p);
+  // Throws ff::Error naming the phase (and substep) that first wrote a NaN or Inf.
+  void check(long step, double time, int substeps);
 
   SceneDesc scene_;
   std::unique_ptr<Backend> backend_;

@@ -54,6 +54,10 @@ FluidView CpuBackend::view() const {
   v.n = s.size();
   v.x = s.x.data(), v.y = s.y.data(), v.z = s.z.data();
   v.vx = s.vx.data(), v.vy = s.vy.data(), v.vz = s.vz.data();
+  if (fluid_.sorted) {  // the grid phase ran since the particles last moved
+    v.grid = &fluid_.grid;
+    v.groups = &fluid_.groups;
+  }
   v.volume = params_.fluid.restVolume();
   v.rho = fluid_.rho.data();
   v.rest_density = params_.fluid.rest_density;
@@ -63,35 +67,50 @@ FluidView CpuBackend::view() const {
 }
 
 void CpuBackend::buildGrid() {
-  buildFluidGrid(fluid_, params_.fluid.smoothing_radius);
+  log_.begin(Phase::Grid);
+  buildFluidGrid(fluid_, params_.fluid.smoothing_radius, box_);
 }
 
 void CpuBackend::computeDensity() {
-  solver_->computeDensity(fluid_, params_.fluid, box_);
+  log_.begin(Phase::Density);
+  if (!solver_->computeDensity(fluid_, params_.fluid, box_)) log_.fail();
 }
 
 void CpuBackend::computeForces() {
-  const size_t n = fluid_.size();
-  for (auto* a : {&fluid_.ax, &fluid_.ay, &fluid_.az}) a->assign(n, 0.0f);
-  solver_->addPressure(fluid_, params_.fluid, box_, params_.fluid.time_step);
-  addViscosityGravity(fluid_, params_.fluid);
+  log_.begin(Phase::Forces);
+  if (!solver_->computeForces(fluid_, params_.fluid, box_, params_.fluid.time_step)) log_.fail();
 }
 
 void CpuBackend::computeControlScale() {
-  if (controller_.active()) controller_.computeScale(view());
+  log_.begin(Phase::ControlScale);
+  if (controller_.active() && !controller_.computeScale(view())) log_.fail();
 }
 
 void CpuBackend::applyControlForces(float dt) {
-  if (controller_.active())
-    controller_.addForces(view(), dt, fluid_.ax.data(), fluid_.ay.data(), fluid_.az.data());
+  log_.begin(Phase::ControlForces);
+  if (controller_.active() &&
+      !controller_.addForces(view(), dt, fluid_.ax.data(), fluid_.ay.data(), fluid_.az.data()))
+    log_.fail();
 }
 
 void CpuBackend::integrate(float dt) {
-  integrateFluid(fluid_, params_.fluid, box_, dt);
+  log_.begin(Phase::Integrate);
+  if (!integrateFluid(fluid_, params_.fluid, box_, dt)) log_.fail();
 }
 
 int CpuBackend::shapeMatching(float dt) {
-  return controller_.advance(dt);
+  log_.begin(Phase::ShapeMatching);
+  const int steps = controller_.advance(dt);
+  if (!controller_.takeFinite()) log_.fail();
+  return steps;
+}
+
+Phase CpuBackend::firstNonFinite(int* substep) {
+  return log_.take(0, substep);
+}
+
+size_t CpuBackend::memoryBytes() const {
+  return fluid_.memoryBytes() + controller_.memoryBytes();
 }
 
 StepMetrics CpuBackend::computeMetrics() {
@@ -122,7 +141,7 @@ StepMetrics CpuBackend::computeMetrics() {
       bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
       const float h = params_.fluid.smoothing_radius;
       if (!fluid_.grid_current) {  // the next grid phase sorts by this one
-        fluid_.grid.build(s.size(), s.x.data(), s.y.data(), s.z.data(), h);
+        buildFluidIndex(fluid_, h, box_);
         fluid_.grid_current = true;
       }
       m.iou =
@@ -130,39 +149,6 @@ StepMetrics CpuBackend::computeMetrics() {
     }
   }
   return m;
-}
-
-namespace {
-bool allFinite(const std::vector<float>& a) {
-  const long n = long(a.size());
-  int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad)
-  for (long i = 0; i < n; ++i) bad |= std::isfinite(a[i]) ? 0 : 1;
-  return !bad;
-}
-}  // namespace
-
-bool CpuBackend::finiteAfter(Phase phase) {
-  const FluidState& s = fluid_.s;
-  const ControlSet& c = controller_.set();
-  switch (phase) {
-    case Phase::Density:
-      return allFinite(fluid_.rho) && allFinite(fluid_.p);
-    case Phase::Forces:
-    case Phase::ControlForces:
-      return allFinite(fluid_.ax) && allFinite(fluid_.ay) && allFinite(fluid_.az);
-    case Phase::ControlScale:
-      return allFinite(controller_.fields().s) && allFinite(controller_.fields().ux) &&
-             allFinite(controller_.fields().uy) && allFinite(controller_.fields().uz);
-    case Phase::Integrate:
-      return allFinite(s.x) && allFinite(s.y) && allFinite(s.z) && allFinite(s.vx) && allFinite(s.vy) &&
-             allFinite(s.vz);
-    case Phase::ShapeMatching:
-      return allFinite(c.x) && allFinite(c.y) && allFinite(c.z) && allFinite(c.vx) && allFinite(c.vy) &&
-             allFinite(c.vz);
-    default:
-      return true;
-  }
 }
 
 }  // namespace ff

@@ -4,6 +4,7 @@
 
 #include "control/controller.h"
 #include "core/backend.h"
+#include "core/nonfinite_log.h"
 #include "cpu/fluid_cpu.h"
 #include "cpu/pressure_solver.h"
 #include "metrics/iou.h"
@@ -29,7 +30,8 @@ class CpuBackend : public Backend {
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
   StepMetrics computeMetrics() override;
-  bool finiteAfter(Phase phase) override;
+  Phase firstNonFinite(int* substep = nullptr) override;
+  size_t memoryBytes() const override;
 
   void readFluid(FluidState& out) override { out = fluid_.s; }
   void readDensity(std::vector<float>& rho, std::vector<float>& p) override {
@@ -53,6 +55,7 @@ class CpuBackend : public Backend {
   Controller controller_;
   const TargetShape* target_ = nullptr;
   RigidFrame frame_;
+  NonFiniteLog log_;
 };
 
 }  // namespace ff

@@ -13,31 +13,41 @@ struct CpuFluid {
   FluidState s;                   // sorted by grid cell after buildFluidGrid
   std::vector<float> rho, p;      // density, pressure
   std::vector<float> ax, ay, az;  // accelerations of this step
-  UniformGrid grid;               // cell size h
+  UniformGrid grid;               // cell h, over the container
+  // Groups of up to 8 consecutive particles in one row of grid cells (after
+  // buildFluidGrid): the neighbour loops run a group's particles as 8 lanes.
+  std::vector<uint32_t> groups;
   // True while `grid` indexes the current (unsorted) positions: the metrics
   // phase builds it after integration, and the next grid phase sorts by it
   // instead of building it again.
   bool grid_current = false;
+  // True from the grid phase until the particles move: the arrays are sorted
+  // by `grid` and its ranges index them directly.
+  bool sorted = false;
   std::vector<float> scratch;
   std::vector<uint32_t> scratch_u;
   size_t size() const { return s.size(); }
+  size_t memoryBytes() const;
 };
+
+// The fluid grid (cell h) over the container box: every particle is inside it.
+void buildFluidIndex(CpuFluid& f, float h, const ContainerDesc& box);
 
 // Phase "grid": counting sort by cell of size h (unless f.grid_current), then
 // reorder every array.
-void buildFluidGrid(CpuFluid& f, float h);
+void buildFluidGrid(CpuFluid& f, float h, const ContainerDesc& box);
 
 // Phase "density" (part of the WCSPH pressure solver): rho_i = sum_j m W_poly6
-// + the analytic wall term, and p = k (rho - rho0).
-void computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
+// + the analytic wall term, and p = k (rho - rho0). False if a value is not finite.
+bool computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
 
-// Pressure acceleration: symmetric pressure force / rho_i, plus the wall's.
-void addPressureAccel(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
+// Phase "forces" of WCSPH: a = the symmetric pressure force / rho_i with the
+// wall's, + viscosity (Laplacian of the viscosity kernel) + gravity, in one
+// neighbour walk. False if a value is not finite.
+bool computeWcsphForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
 
-// Viscosity acceleration (Laplacian of the viscosity kernel) and gravity.
-void addViscosityGravity(CpuFluid& f, const FluidParams& p);
-
-// Phase "integrate": symplectic Euler, velocity limit, container.
-void integrateFluid(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt);
+// Phase "integrate": symplectic Euler, velocity limit, container. False if a
+// value is not finite.
+bool integrateFluid(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt);
 
 }  // namespace ff

@@ -13,21 +13,22 @@ class PressureSolver {
  public:
   virtual ~PressureSolver() = default;
   virtual std::string name() const = 0;
-  // Density (and pressure) from the current positions.
-  virtual void computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) = 0;
-  // Adds the pressure acceleration for a step of length dt.
-  virtual void addPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) = 0;
+  // Density (and pressure) from the current positions. False if a value is not finite.
+  virtual bool computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) = 0;
+  // Sets the accelerations for a step of length dt: pressure, viscosity and
+  // gravity. False if a value is not finite.
+  virtual bool computeForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) = 0;
 };
 
 // Weakly compressible SPH with p = k (rho - rho0) (Mueller et al. 2003).
 class WcsphSolver : public PressureSolver {
  public:
   std::string name() const override { return "wcsph"; }
-  void computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) override {
-    computeDensityPressure(f, p, box);
+  bool computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) override {
+    return computeDensityPressure(f, p, box);
   }
-  void addPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float) override {
-    addPressureAccel(f, p, box);
+  bool computeForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float) override {
+    return computeWcsphForces(f, p, box);
   }
 };
 

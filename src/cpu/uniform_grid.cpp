@@ -16,6 +16,11 @@ void UniformGrid::build(size_t n, const float* x, const float* y, const float* z
       lo[2] = std::min(lo[2], z[i]), hi[2] = std::max(hi[2], z[i]);
     }
   }
+  build(n, x, y, z, cell, lo, hi, max_cells);
+}
+
+void UniformGrid::build(size_t n, const float* x, const float* y, const float* z, float cell,
+                        const float lo[3], const float hi[3], size_t max_cells) {
   cell_ = cell;
   auto dims = [&](float c, int d) { return int(std::floor((hi[d] - lo[d]) / c)) + 3; };
   while (true) {
@@ -25,9 +30,13 @@ void UniformGrid::build(size_t n, const float* x, const float* y, const float* z
   }
   inv_cell_ = 1.0f / cell_;
   ox_ = lo[0] - cell_, oy_ = lo[1] - cell_, oz_ = lo[2] - cell_;
-  size_t ncells = size_t(nx_) * ny_ * nz_;
+  sort(n, x, y, z);
+}
 
-  // Counting sort: count, exclusive scan, scatter.
+void UniformGrid::sort(size_t n, const float* x, const float* y, const float* z) {
+  const size_t ncells = size_t(nx_) * ny_ * nz_;
+  // Counting sort: count, exclusive scan, scatter (start_ doubles as the fill
+  // pointer and is shifted back afterwards).
   start_.assign(ncells + 1, 0);
   cell_of_.resize(n);
   for (size_t i = 0; i < n; ++i) {
@@ -38,21 +47,69 @@ void UniformGrid::build(size_t n, const float* x, const float* y, const float* z
   }
   for (size_t c = 0; c < ncells; ++c) start_[c + 1] += start_[c];
   order_.resize(n);
-  fill_.assign(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < n; ++i) order_[fill_[cell_of_[i]]++] = uint32_t(i);
+  for (size_t i = 0; i < n; ++i) order_[start_[cell_of_[i]]++] = uint32_t(i);
+  for (size_t c = ncells; c > 0; --c) start_[c] = start_[c - 1];
+  start_[0] = 0;
+}
+
+void UniformGrid::rangesNear(const float lo[3], const float hi[3], float radius,
+                             std::vector<uint32_t>& out) const {
+  out.clear();
+  const float reach = ff_query_reach(radius, cell_), r2 = reach * reach;
+  const int z0 = cellCoord(lo[2] - reach, oz_, nz_), z1 = cellCoord(hi[2] + reach, oz_, nz_);
+  const int y0 = cellCoord(lo[1] - reach, oy_, ny_), y1 = cellCoord(hi[1] + reach, oy_, ny_);
+  constexpr int kRows = 64;  // y rows whose gaps are kept; beyond that they are recomputed
+  float gy2[kRows];
+  for (int y = y0; y <= y1 && y - y0 < kRows; ++y) {
+    const float g = ff_slab_gap(lo[1], hi[1], y, ny_, oy_, cell_);
+    gy2[y - y0] = g * g;
+  }
+  for (int z = z0; z <= z1; ++z) {
+    const float gz = ff_slab_gap(lo[2], hi[2], z, nz_, oz_, cell_), gz2 = gz * gz;
+    if (gz2 > r2) continue;
+    for (int y = y0; y <= y1; ++y) {
+      float g2;
+      if (y - y0 < kRows) {
+        g2 = gy2[y - y0] + gz2;
+      } else {
+        const float g = ff_slab_gap(lo[1], hi[1], y, ny_, oy_, cell_);
+        g2 = g * g + gz2;
+      }
+      int x0, x1;
+      if (!ff_row_cells(lo[0], hi[0], g2, reach, ox_, inv_cell_, nx_, &x0, &x1)) continue;
+      const size_t row = ff_cell_index(0, y, z, nx_, ny_);
+      const uint32_t b = start_[row + size_t(x0)], e = start_[row + size_t(x1) + 1];
+      if (b < e) out.push_back(b), out.push_back(e);
+    }
+  }
+}
+
+void UniformGrid::rowGroups(uint32_t width, std::vector<uint32_t>& out) const {
+  out.clear();
+  const size_t rows = size_t(ny_) * nz_;
+  for (size_t r = 0; r < rows; ++r) {
+    const uint32_t b = start_[r * size_t(nx_)], e = start_[(r + 1) * size_t(nx_)];
+    for (uint32_t g = b; g < e; g += width) out.push_back(g), out.push_back(std::min(e, g + width));
+  }
+}
+
+size_t UniformGrid::memoryBytes() const {
+  return (start_.capacity() + order_.capacity() + cell_of_.capacity()) * sizeof(uint32_t);
 }
 
 void permute(std::vector<float>& a, const std::vector<uint32_t>& order, std::vector<float>& scratch) {
   scratch.resize(a.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < long(order.size()); ++k) scratch[k] = a[order[k]];
+  const long n = long(order.size());
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (long k = 0; k < n; ++k) scratch[size_t(k)] = a[order[size_t(k)]];
   a.swap(scratch);
 }
 
 void permute(std::vector<uint32_t>& a, const std::vector<uint32_t>& order, std::vector<uint32_t>& scratch) {
   scratch.resize(a.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < long(order.size()); ++k) scratch[k] = a[order[k]];
+  const long n = long(order.size());
+#pragma omp parallel for schedule(static) if (n > 65536)
+  for (long k = 0; k < n; ++k) scratch[size_t(k)] = a[order[size_t(k)]];
   a.swap(scratch);
 }
 

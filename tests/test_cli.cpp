@@ -9,34 +9,20 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;
-};
+using Result = fftest::CliResult;
 
 Result run(const std::string& args) {
-  const std::string cmd =
-      std::string("FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' '") + FF_FLOWFORM_EXE + "' " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return fftest::runFlowform(args);
 }
 
 fs::path tempDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("flowform_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fftest::freshTempDir("cli_" + name);
 }
 
 void write(const fs::path& p, const std::string& text) {

@@ -1,0 +1,65 @@
+// bench_runner.cpp - one timed run of a bench case.
+#include "app/bench_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "core/error.h"
+#include "core/simulation.h"
+#include "host/backend_factory.h"
+
+namespace ff::app {
+
+PhaseStats summarise(std::vector<double>& v) {
+  PhaseStats s;
+  if (v.empty()) return s;
+  const size_t n = v.size();
+  std::nth_element(v.begin(), v.begin() + long(n / 2), v.end());
+  double med = v[n / 2];
+  if (n % 2 == 0) med = 0.5 * (med + *std::max_element(v.begin(), v.begin() + long(n / 2)));
+  s.median = med;
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  return s;
+}
+
+BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, int steps) {
+  if (steps < 1) throw Error("bench: --steps must be at least 1");
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string note;
+  auto backend = makeBackend(b.kind, b.device, b.threads, &note);
+  BenchResult r;
+  r.scene = c.name;
+  r.backend = backend->name();
+  r.device = backend->device();
+  Simulation sim(c.scene, std::move(backend));
+  for (int i = 0; i < warmup; ++i) sim.step();
+  constexpr size_t kPhases = size_t(Phase::Count);
+  std::array<std::vector<double>, kPhases> samples;
+  std::vector<double> totals;
+  totals.reserve(size_t(steps));
+  double substeps = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    sim.step();
+    double total = 0.0;
+    for (size_t p = 0; p < kPhases; ++p) {
+      samples[p].push_back(sim.lastStepMs()[p]);
+      total += sim.lastStepMs()[p];
+    }
+    totals.push_back(total);
+    substeps += sim.metrics().substeps;
+  }
+  for (size_t p = 0; p < kPhases; ++p) r.phase[p] = summarise(samples[p]);
+  r.total = summarise(totals);
+  r.steps = steps;
+  r.mean_substeps = substeps / double(steps);
+  r.fluid = c.fluid;
+  r.control = sim.metrics().control_count;
+  r.memory_bytes = sim.backend().memoryBytes();
+  r.final_iou = sim.metrics().iou;
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace ff::app

@@ -1,0 +1,44 @@
+// bench_runner.h - times one bench case on one backend: warm-up steps, then
+// per-step milliseconds of every phase, summarised as median / min / max.
+#pragma once
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "app/bench_cases.h"
+#include "core/backend.h"
+
+namespace ff::app {
+
+// What one backend configuration is: kind for makeBackend and the device index.
+struct BenchBackend {
+  std::string kind;  // "cpu" or "opencl"
+  int device = -1;   // OpenCL device index
+  int threads = 0;   // OpenMP threads (0: default)
+};
+
+struct PhaseStats {
+  double median = 0.0, min = 0.0, max = 0.0;  // ms per step
+};
+
+struct BenchResult {
+  std::string scene, backend, device;
+  long fluid = 0;
+  long control = 0;  // control particles actually placed
+  int steps = 0;     // timed steps
+  double mean_substeps = 0.0;
+  std::array<PhaseStats, size_t(Phase::Count)> phase{};
+  PhaseStats total;
+  size_t memory_bytes = 0;  // the backend's particle, grid and control buffers
+  double final_iou = 0.0;
+  double wall_s = 0.0;  // whole run, warm-up and setup included
+};
+
+// Median, minimum and maximum of the samples (which it reorders).
+PhaseStats summarise(std::vector<double>& samples);
+
+// Runs `warmup` untimed steps and `steps` timed ones.
+BenchResult runBenchCase(const BenchCase& bench_case, const BenchBackend& backend, int warmup, int steps);
+
+}  // namespace ff::app

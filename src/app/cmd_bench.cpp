@@ -1,0 +1,211 @@
+// cmd_bench.cpp - `flowform bench`: ms per step and phase for the paper's
+// Table 1 scenes (its Fig. 8) and the scaling sweeps, on every backend present.
+#include <omp.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/bench_cases.h"
+#include "app/bench_report.h"
+#include "app/bench_runner.h"
+#include "app/commands.h"
+#include "core/error.h"
+#ifndef FF_NO_OPENCL
+#include "host/cl_context.h"
+#endif
+
+namespace ff::app {
+
+namespace {
+
+struct BenchOptions {
+  bool table1 = false, fluid_sweep = false, control_sweep = false;
+  std::string backend = "all";
+  int device = -1;
+  int threads = 0;
+  int steps = 200, warmup = 50;
+  int sweep_steps = 50, sweep_warmup = 20;
+  long max_fluid = 1000000;
+  long max_control = 50000;
+  double budget_s = 180.0;
+  std::string csv;
+  bool plot = false;
+};
+
+// The backends to time: the OpenMP one and every OpenCL device (or the ones asked for).
+std::vector<BenchBackend> chooseBackends(const BenchOptions& o) {
+  std::vector<BenchBackend> list;
+  if (o.backend != "all" && o.backend != "cpu" && o.backend != "opencl")
+    throw Error("--backend: '" + o.backend + "' is not one of all, cpu, opencl");
+  if (o.backend == "all" || o.backend == "cpu") list.push_back({"cpu", -1, o.threads});
+  if (o.backend == "all" || o.backend == "opencl") {
+#ifdef FF_NO_OPENCL
+    if (o.backend == "opencl") throw Error("--backend opencl: this flowform was built without OpenCL");
+    std::fprintf(stderr, "bench: built without OpenCL; timing the OpenMP backend only\n");
+#else
+    std::vector<ClDeviceInfo> devices;
+    try {
+      devices = listClDevices();
+    } catch (const Error& e) {
+      if (o.backend == "opencl") throw;
+      std::fprintf(stderr, "bench: no OpenCL (%s); timing the OpenMP backend only\n", e.what());
+    }
+    if (o.device >= 0) {
+      if (o.device >= int(devices.size()))
+        throw Error("--device " + std::to_string(o.device) + ": there are " + std::to_string(devices.size()) +
+                    " OpenCL devices (see `flowform devices`)");
+      list.push_back({"opencl", o.device, o.threads});
+    } else {
+      for (const ClDeviceInfo& d : devices) list.push_back({"opencl", d.index, o.threads});
+    }
+#endif
+  }
+  return list;
+}
+
+void validate(const BenchOptions& o) {
+  if (o.steps < 1) throw Error("--steps: must be at least 1");
+  if (o.sweep_steps < 1) throw Error("--sweep-steps: must be at least 1");
+  if (o.warmup < 0 || o.sweep_warmup < 0) throw Error("--warmup/--sweep-warmup: must be >= 0");
+  if (o.threads < 0) throw Error("--threads: must be >= 0");
+  if (o.max_fluid < 1000) throw Error("--max-fluid: must be at least 1000");
+  if (o.max_control < 100) throw Error("--max-control: must be at least 100");
+  if (!(o.budget_s > 0.0)) throw Error("--budget: must be a positive number of seconds");
+  if (o.plot && o.csv.empty()) throw Error("--plot: give --csv FILE too (the plots go next to it)");
+  if (!o.csv.empty()) {
+    // Fail now, not after minutes of timing.
+    std::ofstream f(o.csv, std::ios::app);
+    if (!f) throw Error(o.csv + ": --csv: cannot write this file (" + std::strerror(errno) + ")");
+  }
+}
+
+class Bench {
+ public:
+  explicit Bench(const BenchOptions& o) : o_(o) {}
+
+  void table1(const std::vector<BenchBackend>& backends) {
+    const std::vector<BenchCase> cases = table1Cases();
+    std::vector<BenchResult> out;
+    for (const BenchCase& c : cases)
+      for (const BenchBackend& b : backends) out.push_back(run(c, b, o_.warmup, o_.steps));
+    printMarkdown(stdout, "Table 1 scenes (paper Fig. 8)", out);
+  }
+
+  // Runs the cases in order while the next one is expected to fit in the
+  // budget (its cost estimated from the last one's, scaled by `size`).
+  void sweep(const std::string& title, const std::vector<BenchCase>& cases,
+             const std::vector<BenchBackend>& backends, long (*size)(const BenchCase&)) {
+    std::vector<BenchResult> out;
+    for (const BenchBackend& b : backends) {
+      double spent = 0.0, last_wall = 0.0;
+      long last_size = 0;
+      for (const BenchCase& c : cases) {
+        if (last_size > 0) {
+          const double estimate = last_wall * double(size(c)) / double(last_size);
+          if (spent + estimate > o_.budget_s) {
+            std::fprintf(stderr,
+                         "bench: %s on %s stops before %ld: it would take about %.0f s, past the --budget of "
+                         "%.0f s\n",
+                         title.c_str(), b.kind.c_str(), size(c), estimate, o_.budget_s);
+            break;
+          }
+        }
+        out.push_back(run(c, b, o_.sweep_warmup, o_.sweep_steps));
+        last_wall = out.back().wall_s;
+        last_size = size(c);
+        spent += last_wall;
+      }
+    }
+    printMarkdown(stdout, title, out);
+  }
+
+  void finish() {
+    if (o_.plot)
+      for (const std::string& f : plotBenchCsv(o_.csv)) std::fprintf(stderr, "bench: wrote %s\n", f.c_str());
+  }
+
+ private:
+  BenchResult run(const BenchCase& c, const BenchBackend& b, int warmup, int steps) {
+    std::fprintf(stderr, "bench: %s, %ld fluid, %ld control, on %s%s ...", c.name.c_str(), c.fluid, c.control,
+                 b.kind.c_str(), b.kind == "opencl" ? (" device " + std::to_string(b.device)).c_str() : "");
+    std::fflush(stderr);
+    BenchResult r = runBenchCase(c, b, warmup, steps);
+    std::fprintf(stderr, " %.2f ms/step (%s), %.0f s\n", r.total.median, r.device.c_str(), r.wall_s);
+    all_.push_back(r);
+    // Rewritten after every case: an interrupted bench keeps what it measured.
+    if (!o_.csv.empty()) writeBenchCsv(o_.csv, all_);
+    return r;
+  }
+
+  const BenchOptions& o_;
+  std::vector<BenchResult> all_;
+};
+
+long fluidSize(const BenchCase& c) {
+  return c.fluid;
+}
+long controlSize(const BenchCase& c) {
+  return c.control;
+}
+
+int runBench(BenchOptions o) {
+  validate(o);
+  if (!o.table1 && !o.fluid_sweep && !o.control_sweep) o.table1 = o.fluid_sweep = o.control_sweep = true;
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  const std::vector<BenchBackend> backends = chooseBackends(o);
+  // Fail on a missing mesh before timing anything.
+  if (o.table1) table1Cases();
+  std::printf(
+      "flowform bench: %d OpenMP threads; Table 1: median of %d steps after %d warm-up steps; sweeps: "
+      "median of %d steps after %d\n",
+      o.threads > 0 ? o.threads : omp_get_max_threads(), o.steps, o.warmup, o.sweep_steps, o.sweep_warmup);
+  Bench bench(o);
+  if (o.table1) bench.table1(backends);
+  if (o.fluid_sweep)
+    bench.sweep("Fluid-count sweep (sphere target, control = 0.266 x fluid)", fluidSweepCases(o.max_fluid),
+                backends, fluidSize);
+  if (o.control_sweep)
+    bench.sweep("Control-count sweep (12k fluid, sphere target)", controlSweepCases(o.max_control), backends,
+                controlSize);
+  bench.finish();
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> addBenchCommand(CLI::App& app) {
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "bench",
+      "Time every phase: the paper's Table 1 scenes (12k fluid; bunny, teapot, runner, dragon meshes from "
+      "FLOWFORM_MESH_PATH) and scaling sweeps, on every backend present. With no --table1/--fluid-sweep/"
+      "--control-sweep, runs all three.");
+  cmd->add_flag("--table1", o->table1, "Time the Table 1 scenes");
+  cmd->add_flag("--fluid-sweep", o->fluid_sweep, "Time 12k .. --max-fluid fluid particles");
+  cmd->add_flag("--control-sweep", o->control_sweep,
+                "Time 500 .. --max-control control particles at 12k fluid");
+  cmd->add_option("--backend", o->backend,
+                  "all (default), cpu or opencl (every OpenCL device unless --device)");
+  cmd->add_option("--device", o->device, "OpenCL device index (see `flowform devices`)");
+  cmd->add_option("--threads", o->threads, "OpenMP threads (default: OpenMP's default)");
+  cmd->add_option("--steps", o->steps, "Timed steps per Table 1 case (default 200)");
+  cmd->add_option("--warmup", o->warmup, "Untimed steps before (default 50)");
+  cmd->add_option("--sweep-steps", o->sweep_steps, "Timed steps per sweep case (default 50)");
+  cmd->add_option("--sweep-warmup", o->sweep_warmup, "Untimed steps per sweep case (default 20)");
+  cmd->add_option("--max-fluid", o->max_fluid, "Largest fluid count of the sweep (default 1000000)");
+  cmd->add_option("--max-control", o->max_control, "Largest control count of the sweep (default 50000)");
+  cmd->add_option(
+      "--budget", o->budget_s,
+      "Seconds each sweep may take per backend; it stops before a size that would not fit (default "
+      "180)");
+  cmd->add_option("--csv", o->csv, "Write scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max");
+  cmd->add_flag("--plot", o->plot, "Write PNG plots next to the CSV (python3-matplotlib)");
+  return [o] { return runBench(*o); };
+}
+
+}  // namespace ff::app

@@ -1,0 +1,45 @@
+// cli_run.h - runs the built flowform program as a user would, for the tests
+// of its commands: exit code and everything it printed.
+#pragma once
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fftest {
+
+struct CliResult {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+// Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the shared test meshes;
+// `env` holds further assignments for its environment (e.g. "PATH=/nonexistent "),
+// which may override FLOWFORM_MESH_PATH.
+inline CliResult runFlowform(const std::string& args, const std::string& env = "") {
+  const std::string cmd = "FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' " + env + "'" +
+                          std::string(FF_FLOWFORM_EXE) + "' " + args + " 2>&1";
+  CliResult r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// A fresh, empty folder in the temp directory, unique to this process.
+inline std::filesystem::path freshTempDir(const std::string& name) {
+  namespace fs = std::filesystem;
+  fs::path d = fs::temp_directory_path() / ("flowform_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace fftest

@@ -1,0 +1,186 @@
+// `flowform bench`: the CSV it writes (columns, one row per phase and a total
+// consistent with the phases), the Table 1 control counts, the plots and the
+// messages for bad input. No timing is asserted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include "app/bench_runner.h"
+#include "cli_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fftest::freshTempDir;
+using fftest::runFlowform;
+
+struct Row {
+  std::string scene, backend, device, phase;
+  long fluid = 0, control = 0;
+  double med = 0, min = 0, max = 0;
+};
+
+// Splits one CSV line, honouring quoted fields.
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> f(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+        f.back() += '"', ++i;
+      else if (c == '"')
+        quoted = false;
+      else
+        f.back() += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      f.emplace_back();
+    } else {
+      f.back() += c;
+    }
+  }
+  return f;
+}
+
+std::vector<Row> readCsv(const fs::path& p, std::string* header) {
+  std::ifstream in(p);
+  std::getline(in, *header);
+  std::vector<Row> rows;
+  for (std::string line; std::getline(in, line);) {
+    auto f = splitCsv(line);
+    EXPECT_EQ(f.size(), 9u) << line;
+    if (f.size() != 9) continue;
+    rows.push_back({f[0], f[1], f[2], f[5], std::stol(f[3]), std::stol(f[4]), std::stod(f[6]),
+                    std::stod(f[7]), std::stod(f[8])});
+  }
+  return rows;
+}
+
+const std::vector<std::string> kPhases = {"grid",           "density",   "forces",         "control_scale",
+                                          "control_forces", "integrate", "shape_matching", "metrics"};
+
+TEST(BenchStats, MedianMinMaxMatchASortedCopy) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 10.0);
+  for (size_t n : {1u, 2u, 5u, 200u, 201u}) {
+    std::vector<double> v(n);
+    for (double& x : v) x = u(rng);
+    std::vector<double> sorted = v;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    ff::app::PhaseStats s = ff::app::summarise(v);
+    EXPECT_DOUBLE_EQ(s.median, median) << n;
+    EXPECT_DOUBLE_EQ(s.min, sorted.front()) << n;
+    EXPECT_DOUBLE_EQ(s.max, sorted.back()) << n;
+  }
+}
+
+// A small control sweep on every backend: per backend and case, one row per
+// phase plus a total whose per-step sums bound it by the phases' extremes.
+TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
+  fs::path d = freshTempDir("bench_sweep");
+  const fs::path csv = d / "b.csv";
+  auto r = runFlowform(
+      "bench --control-sweep --max-control 1000 --sweep-steps 4 --sweep-warmup 1 --threads 2 "
+      "--csv '" +
+      csv.string() + "' --plot");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::string header;
+  const auto rows = readCsv(csv, &header);
+  EXPECT_EQ(header, "scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max");
+  std::map<std::string, std::vector<Row>> runs;  // backend+device+control -> rows
+  for (const Row& row : rows)
+    runs[row.backend + "|" + row.device + "|" + std::to_string(row.control)].push_back(row);
+  // cpu at two control counts (500, 1000), and the same for each OpenCL device.
+  ASSERT_GE(runs.size(), 2u);
+  bool has_cpu = false;
+  for (const auto& [key, rs] : runs) {
+    has_cpu |= rs.front().backend == "cpu";
+    ASSERT_EQ(rs.size(), kPhases.size() + 1) << key;
+    double sum_min = 0, sum_max = 0;
+    for (size_t i = 0; i < kPhases.size(); ++i) {
+      EXPECT_EQ(rs[i].phase, kPhases[i]) << key;
+      EXPECT_LE(rs[i].min, rs[i].med) << key << " " << rs[i].phase;
+      EXPECT_LE(rs[i].med, rs[i].max) << key << " " << rs[i].phase;
+      EXPECT_GE(rs[i].min, 0.0);
+      sum_min += rs[i].min;
+      sum_max += rs[i].max;
+    }
+    const Row& total = rs.back();
+    EXPECT_EQ(total.phase, "total");
+    EXPECT_GT(total.min, 0.0) << key;
+    // Each step's total is the sum of its phases, so it lies between the sums
+    // of the phases' minima and maxima (printed with 6 significant digits).
+    EXPECT_GE(total.min, sum_min * (1 - 1e-5)) << key;
+    EXPECT_LE(total.max, sum_max * (1 + 1e-5)) << key;
+    EXPECT_EQ(total.scene, "control-sweep");
+    EXPECT_NEAR(double(total.fluid), 12000.0, 200.0);
+    // The placed control count is within the voxel search's 3% of the asked one.
+    EXPECT_TRUE(std::abs(total.control - 500) <= 15 || std::abs(total.control - 1000) <= 30) << total.control;
+  }
+  EXPECT_TRUE(has_cpu);
+  // The markdown table on stdout names every phase.
+  for (const std::string& p : kPhases) EXPECT_NE(r.out.find("| " + p + " |"), std::string::npos) << p;
+  // --plot: the control sweep's plot, a PNG.
+  std::ifstream png(d / "b_control.png", std::ios::binary);
+  ASSERT_TRUE(png.good()) << r.out;
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+// Table 1: the four meshes at the paper's control-particle counts.
+TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
+  fs::path d = freshTempDir("bench_table1");
+  const fs::path csv = d / "t.csv";
+  auto r = runFlowform("bench --table1 --backend cpu --steps 1 --warmup 0 --threads 2 --csv '" +
+                       csv.string() + "'");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::string header;
+  const std::map<std::string, long> paper = {
+      {"bunny", 3197}, {"teapot", 2154}, {"runner", 549}, {"dragon", 2714}};
+  std::map<std::string, long> seen;
+  for (const Row& row : readCsv(csv, &header)) {
+    if (row.phase != "total") continue;
+    EXPECT_EQ(row.fluid, 12000) << row.scene;
+    EXPECT_EQ(row.backend, "cpu");
+    seen[row.scene] = row.control;
+  }
+  ASSERT_EQ(seen.size(), 4u) << r.out;
+  for (const auto& [scene, count] : paper)
+    EXPECT_NEAR(double(seen[scene]), double(count), 0.03 * double(count)) << scene;
+}
+
+TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
+  fs::path d = freshTempDir("bench_bad");
+  struct Case {
+    std::string args, env, says;
+  };
+  const std::vector<Case> cases = {
+      {"bench --backend gpu", "", "--backend"},
+      {"bench --steps 0", "", "--steps"},
+      {"bench --plot", "", "--plot"},
+      {"bench --budget nan", "", "--budget"},
+      {"bench --table1 --backend cpu --csv '" + (d / "no" / "such" / "dir.csv").string() + "'", "",
+       "dir.csv"},
+  };
+  for (const Case& c : cases) {
+    auto r = runFlowform(c.args, c.env);
+    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
+  }
+  // No meshes: the message names the mesh and the search path.
+  auto r = runFlowform("bench --table1 --backend cpu --steps 1", "FLOWFORM_MESH_PATH=/nonexistent ");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("bunny.obj"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("FLOWFORM_MESH_PATH"), std::string::npos) << r.out;
+}
+
+}  // namespace

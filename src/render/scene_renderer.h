@@ -18,19 +18,29 @@ enum class FluidMode { ScreenSpace, Particles };
 
 struct RenderOptions {
   FluidMode mode = FluidMode::ScreenSpace;
-  bool show_control = false;    // control particles coloured by s_i
-  bool show_ghost = false;      // target shape ghost
-  bool show_region = true;      // controlled-region wireframe
-  bool show_container = true;   // container edges and floor
+  bool show_control = false;     // control particles coloured by s_i
+  bool show_ghost = false;       // target shape ghost
+  bool show_region = true;       // controlled-region wireframe
+  bool show_container = true;    // container edges and floor
+  bool show_shadow = true;       // the liquid's soft shadow on the floor
   int smoothing_iterations = 3;  // depth-smoothing passes
-  float smoothing_scale = 1.0f;  // filter radius in particle radii
+  float smoothing_scale = 1.0f;  // Gaussian sigma of the filter in projected particle radii
   float fluid_color[3] = {0.10f, 0.45f, 0.85f};
-  float absorption = 30.0f;  // thickness -> tint (Beer-Lambert), 1/m
+  float absorption = 15.0f;  // thickness -> tint (Beer-Lambert), 1/m
+  // Also time each pass (a glFinish after each, which costs some overlap on a GPU).
+  bool profile_passes = false;
 };
 
 // Milliseconds the GPU spent on the last draw() (glFinish-bounded CPU timing).
 struct RenderTimings {
   double total_ms = 0.0;
+  // With RenderOptions::profile_passes (else 0): the passes, in order.
+  double background_ms = 0.0;  // floor shadow, sky, floor, walls, edges
+  double depth_ms = 0.0;       // sphere depth splats
+  double smoothing_ms = 0.0;   // depth smoothing
+  double thickness_ms = 0.0;   // thickness splats
+  double composite_ms = 0.0;   // composite (or background copy + particle spheres)
+  double overlay_ms = 0.0;     // ghost, region, control particles
 };
 
 class SceneRenderer {

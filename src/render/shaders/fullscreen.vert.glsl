@@ -1,0 +1,9 @@
+// fullscreen.vert.glsl - one triangle that covers the viewport (no vertex
+// buffer: an empty vertex array and glDrawArrays(GL_TRIANGLES, 0, 3)).
+out vec2 v_uv;
+
+void main() {
+  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));  // (0,0) (2,0) (0,2)
+  v_uv = p;
+  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}

@@ -1,6 +1,8 @@
 // scene_json.cpp - reads scene files (scenes/README.md describes the format).
 // The reader is strict: an unknown key, a wrong type or a bad value is an
 // ff::Error "FILE: key.path: problem".
+#include "scene/scene_json.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -129,10 +131,10 @@ struct Reader {
   }
 };
 
-void readParams(const Reader& r, const json& j, Params& p) {
-  r.object(j, "params", {"fluid", "control", "shape_matching"});
+void readParams(const Reader& r, const json& j, const std::string& base, Params& p) {
+  r.object(j, base, {"fluid", "control", "shape_matching"});
   if (j.contains("fluid")) {
-    const std::string path = "params.fluid";
+    const std::string path = child(base, "fluid");
     const json& f =
         r.object(j["fluid"], path,
                  {"particle_mass", "particle_radius", "smoothing_radius", "rest_density", "gas_constant",
@@ -154,7 +156,7 @@ void readParams(const Reader& r, const json& j, Params& p) {
     }
   }
   if (j.contains("control")) {
-    const std::string path = "params.control";
+    const std::string path = child(base, "control");
     const json& c =
         r.object(j["control"], path,
                  {"radius", "attraction", "velocity", "feedback", "gravity_compensation", "units"});
@@ -178,7 +180,7 @@ void readParams(const Reader& r, const json& j, Params& p) {
     }
   }
   if (j.contains("shape_matching")) {
-    const std::string path = "params.shape_matching";
+    const std::string path = child(base, "shape_matching");
     const json& s = r.object(
         j["shape_matching"], path,
         {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations", "damping"});
@@ -237,31 +239,31 @@ FluidBlockDesc readBlock(const Reader& r, const json& j, const std::string& path
   return b;
 }
 
-RegionDesc readRegion(const Reader& r, const json& j) {
+RegionDesc readRegion(const Reader& r, const json& j, const std::string& path) {
   RegionDesc g;
+  const std::string box = child(path, "box"), sphere = child(path, "sphere");
   if (j.is_string()) {
-    if (r.string(j, "region") != "all")
-      r.fail("region", "must be \"all\", {\"box\": ...} or {\"sphere\": ...}");
+    if (r.string(j, path) != "all") r.fail(path, "must be \"all\", {\"box\": ...} or {\"sphere\": ...}");
     return g;
   }
-  if (!j.is_object()) r.fail("region", "must be \"all\", {\"box\": ...} or {\"sphere\": ...}");
-  r.object(j, "region", {"box", "sphere"});
-  if (j.size() != 1) r.fail("region", "must hold exactly one of: box, sphere");
+  if (!j.is_object()) r.fail(path, "must be \"all\", {\"box\": ...} or {\"sphere\": ...}");
+  r.object(j, path, {"box", "sphere"});
+  if (j.size() != 1) r.fail(path, "must hold exactly one of: box, sphere");
   if (j.contains("box")) {
-    const json& b = r.object(j["box"], "region.box", {"min", "max"});
+    const json& b = r.object(j["box"], box, {"min", "max"});
     g.kind = RegionDesc::Kind::Box;
-    g.min = r.vec3(r.required(b, "region.box", "min"), "region.box.min");
-    g.max = r.vec3(r.required(b, "region.box", "max"), "region.box.max");
+    g.min = r.vec3(r.required(b, box, "min"), child(box, "min"));
+    g.max = r.vec3(r.required(b, box, "max"), child(box, "max"));
     for (int i = 0; i < 3; ++i)
       if (!(g.min[i] < g.max[i]))
-        r.fail("region.box",
+        r.fail(box,
                "min must be < max on every axis (got min " + fmtVec(g.min) + ", max " + fmtVec(g.max) + ")");
   } else {
-    const json& s = r.object(j["sphere"], "region.sphere", {"center", "radius"});
+    const json& s = r.object(j["sphere"], sphere, {"center", "radius"});
     g.kind = RegionDesc::Kind::Sphere;
-    g.center = r.vec3(r.required(s, "region.sphere", "center"), "region.sphere.center");
-    g.radius = r.real(r.required(s, "region.sphere", "radius"), "region.sphere.radius");
-    r.positive(g.radius, "region.sphere.radius");
+    g.center = r.vec3(r.required(s, sphere, "center"), child(sphere, "center"));
+    g.radius = r.real(r.required(s, sphere, "radius"), child(sphere, "radius"));
+    r.positive(g.radius, child(sphere, "radius"));
   }
   return g;
 }
@@ -489,7 +491,7 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   } catch (const Error& e) {
     r.fail("preset", e.what());
   }
-  if (root.contains("params")) readParams(r, root["params"], scene.params);
+  if (root.contains("params")) readParams(r, root["params"], "params", scene.params);
   validateParams(scene.params, source);
   if (root.contains("duration")) {
     scene.duration = r.number(root["duration"], "duration");
@@ -504,7 +506,7 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   for (size_t i = 0; i < fluid.size(); ++i)
     scene.fluid.push_back(readBlock(r, fluid[i], element("fluid", i), scene));
 
-  if (root.contains("region")) scene.region = readRegion(r, root["region"]);
+  if (root.contains("region")) scene.region = readRegion(r, root["region"], "region");
   if (root.contains("target") && root.contains("schedule"))
     r.fail("target", "give either 'target' or 'schedule', not both");
   if (root.contains("target"))
@@ -514,6 +516,26 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
 }
 
 }  // namespace
+
+nlohmann::json parseJsonStrict(const std::string& text, const std::string& source) {
+  TreeBuilder builder(source, text);
+  if (!json::sax_parse(text, &builder)) throw Error(source + ": invalid JSON");
+  return std::move(builder.root);
+}
+
+TargetSpec parseTargetSpec(const nlohmann::json& j, const std::string& source, const std::string& path,
+                           const std::string& base_dir) {
+  return readTarget(Reader{source}, j, path, base_dir);
+}
+
+RegionDesc parseRegionDesc(const nlohmann::json& j, const std::string& source, const std::string& path) {
+  return readRegion(Reader{source}, j, path);
+}
+
+void parseParamsOverlay(const nlohmann::json& j, const std::string& source, const std::string& path,
+                        Params& params) {
+  readParams(Reader{source}, j, path, params);
+}
 
 SceneDesc parseScene(const std::string& json_text, const std::string& source, const std::string& base_dir) {
   return parseSceneImpl(json_text, source, base_dir, "scene");

@@ -1,0 +1,246 @@
+// The viewer's window-free parts: the target list (built-ins and the meshes of
+// FLOWFORM_MESH_PATH), the typed-target field, and the session that owns the
+// Simulation: picks stop the scene's schedule, rejected edits change nothing,
+// and reset keeps what docs/VIEWER.md says it keeps.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "viewer/target_catalog.h"
+#include "viewer/viewer_session.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ff::viewer::TargetChoice;
+using ff::viewer::ViewerSession;
+
+fs::path tempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("flowform_session_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void touch(const fs::path& p) {
+  std::ofstream(p) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+}
+
+TEST(ViewerTargets, ListsBuiltinsThenTheMeshesOfEveryFolder) {
+  const fs::path a = tempDir("meshes_a"), b = tempDir("meshes_b");
+  touch(a / "zebra.obj");
+  touch(a / "bunny.obj");
+  touch(a / "Horse.PLY");
+  touch(a / "notes.txt");
+  fs::create_directories(a / "sub.obj");  // a folder, not a mesh
+  touch(a / "sub.obj" / "hidden.stl");
+  touch(b / "bunny.obj");
+  touch(b / "cube.off");
+  const std::string path = a.string() + ":" + (a / "missing").string() + "::" + b.string();
+  const std::vector<TargetChoice> list = ff::viewer::targetChoices(path);
+  std::vector<std::string> labels;
+  for (const TargetChoice& c : list) labels.push_back(c.label);
+  const std::vector<std::string> expected = {"No control",
+                                             "sphere",
+                                             "box",
+                                             "torus",
+                                             "capsule",
+                                             "Horse.PLY",
+                                             "bunny.obj (" + a.string() + ")",
+                                             "zebra.obj",
+                                             "bunny.obj (" + b.string() + ")",
+                                             "cube.off"};
+  EXPECT_EQ(labels, expected);
+  EXPECT_TRUE(list[0].none);
+  EXPECT_FALSE(list[1].none);
+  EXPECT_EQ(list[3].spec.kind, ff::TargetKind::Torus);
+  EXPECT_EQ(list[9].spec.kind, ff::TargetKind::Mesh);
+  EXPECT_EQ(list[9].spec.resolved_path, (b / "cube.off").string());
+  EXPECT_EQ(ff::viewer::targetChoices("").size(), 5u);
+}
+
+TEST(ViewerTargets, TypedTargetTakesNamesPathsAndSceneSyntax) {
+  EXPECT_EQ(ff::viewer::parseTypedTarget("  torus ").kind, ff::TargetKind::Torus);
+  const ff::TargetSpec box = ff::viewer::parseTypedTarget(R"({"shape": "box", "size": [2, 1, 1]})");
+  EXPECT_EQ(box.kind, ff::TargetKind::Box);
+  EXPECT_FLOAT_EQ(box.box_size.x(), 2.0f);
+  const fs::path d = tempDir("typed");
+  touch(d / "tet.obj");
+  const ff::TargetSpec mesh = ff::viewer::parseTypedTarget((d / "tet.obj").string());
+  EXPECT_EQ(mesh.kind, ff::TargetKind::Mesh);
+  EXPECT_EQ(mesh.resolved_path, (d / "tet.obj").string());
+
+  auto message = [](const std::string& text) {
+    try {
+      ff::viewer::parseTypedTarget(text);
+    } catch (const ff::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("cube").find("typed target: must be sphere, box"), std::string::npos) << message("cube");
+  EXPECT_NE(message("").find("typed target: empty"), std::string::npos);
+  EXPECT_NE(message("/no/such/dir/x.obj").find("typed target"), std::string::npos);
+  EXPECT_NE(message(R"({"shape": "box", "size": [2, 1]})").find("size: must be an array of 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(message("{\"shape\": ").find("invalid JSON"), std::string::npos);
+}
+
+// 216 particles in a small box; sphere at t = 0, box from t = 0.008 (step 2).
+ff::SceneDesc tinyScene() {
+  ff::SceneDesc s;
+  s.name = "tiny";
+  s.source = "tiny.json";
+  s.container.min = ff::Vec3(0, 0, 0);
+  s.container.max = ff::Vec3(0.1f, 0.1f, 0.1f);
+  ff::FluidBlockDesc b;
+  b.origin = ff::Vec3(0.03f, 0.0f, 0.03f);
+  b.dims[0] = b.dims[1] = b.dims[2] = 6;
+  s.fluid.push_back(b);
+  ff::TargetSpec sphere, box;
+  sphere.kind = ff::TargetKind::Sphere;
+  box.kind = ff::TargetKind::Box;
+  s.schedule.push_back({0.0, sphere});
+  s.schedule.push_back({0.008, box});
+  return s;
+}
+
+ff::viewer::BackendChoice cpu() {
+  return ff::viewer::BackendChoice{"cpu", -1, 2};
+}
+
+ff::TargetSpec shape(ff::TargetKind k) {
+  ff::TargetSpec t;
+  t.kind = k;
+  return t;
+}
+
+TEST(ViewerSession, PlaysTheScheduleUntilTheUserPicksATarget) {
+  ViewerSession followed(tinyScene(), cpu());
+  EXPECT_EQ(followed.targetLabel(), "sphere");
+  for (int i = 0; i < 4; ++i) followed.step();
+  EXPECT_EQ(followed.targetLabel(), "box");
+  EXPECT_TRUE(followed.followsSchedule());
+
+  ViewerSession picked(tinyScene(), cpu());
+  picked.step();
+  picked.chooseTarget(shape(ff::TargetKind::Torus));
+  EXPECT_FALSE(picked.followsSchedule());
+  for (int i = 0; i < 4; ++i) picked.step();
+  EXPECT_EQ(picked.targetLabel(), "torus");  // the scheduled box did not replace it
+  picked.chooseNoTarget();
+  picked.step();
+  EXPECT_EQ(picked.targetLabel(), "none");
+  EXPECT_EQ(picked.sim().target(), nullptr);
+}
+
+TEST(ViewerSession, RejectedEditsChangeNothing) {
+  ViewerSession s(tinyScene(), cpu());
+  s.step();
+  ff::Params bad = s.params();
+  bad.fluid.viscosity = -1.0f;
+  EXPECT_THROW(s.setParams(bad), ff::Error);
+  EXPECT_FLOAT_EQ(s.params().fluid.viscosity, tinyScene().params.fluid.viscosity);
+
+  ff::RegionDesc empty;
+  empty.kind = ff::RegionDesc::Kind::Box;
+  empty.min = ff::Vec3(0.0f, 0.08f, 0.0f);  // above the fluid
+  empty.max = ff::Vec3(0.01f, 0.09f, 0.01f);
+  EXPECT_THROW(s.setRegion(empty), ff::Error);
+  EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::All);
+
+  const fs::path d = tempDir("badmesh");
+  std::ofstream(d / "broken.obj") << "this is not a mesh\n";
+  ff::TargetSpec broken;
+  broken.kind = ff::TargetKind::Mesh;
+  broken.mesh = broken.resolved_path = (d / "broken.obj").string();
+  EXPECT_THROW(s.chooseTarget(broken), ff::Error);
+  EXPECT_EQ(s.targetLabel(), "sphere");
+  EXPECT_TRUE(s.followsSchedule());
+  EXPECT_NO_THROW(s.step());  // the simulation goes on
+}
+
+TEST(ViewerSession, ANewRegionRebuildsTheTargetFromAllTheFluidInIt) {
+  // Two blocks of 64 particles, far apart; the sphere is made from the left one.
+  ff::SceneDesc scene = tinyScene();
+  scene.schedule.clear();
+  scene.fluid[0].origin = ff::Vec3(0.005f, 0.0f, 0.04f);
+  scene.fluid[0].dims[0] = scene.fluid[0].dims[1] = scene.fluid[0].dims[2] = 4;
+  scene.fluid.push_back(scene.fluid[0]);
+  scene.fluid[1].origin = ff::Vec3(0.07f, 0.0f, 0.04f);
+  ViewerSession s(scene, cpu());
+  ff::RegionDesc left;
+  left.kind = ff::RegionDesc::Kind::Box;
+  left.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  left.max = ff::Vec3(0.05f, 0.1f, 0.1f);
+  s.setRegion(left);
+  s.chooseTarget(shape(ff::TargetKind::Sphere));
+  EXPECT_EQ(s.sim().controlledCount(), 64);
+  s.step();
+  // All: both blocks. (Simulation::setRegion alone would keep to the fluid
+  // forming the current sphere, i.e. the left block.)
+  s.setRegion(ff::RegionDesc());
+  EXPECT_EQ(s.sim().controlledCount(), 128);
+  EXPECT_EQ(s.targetLabel(), "sphere");
+}
+
+TEST(ViewerSession, ResetKeepsEditsOrRestoresTheScene) {
+  ViewerSession s(tinyScene(), cpu());
+  for (int i = 0; i < 3; ++i) s.step();
+  ff::Params p = s.params();
+  p.fluid.viscosity = 0.05f;
+  s.setParams(p);
+  ff::RegionDesc low;
+  low.kind = ff::RegionDesc::Kind::Box;
+  low.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  low.max = ff::Vec3(0.1f, 0.02f, 0.1f);
+  s.setRegion(low);
+  s.chooseTarget(shape(ff::TargetKind::Capsule));
+
+  EXPECT_EQ(s.reset(true), "");
+  EXPECT_DOUBLE_EQ(s.sim().time(), 0.0);
+  EXPECT_FLOAT_EQ(s.params().fluid.viscosity, 0.05f);
+  EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::Box);
+  EXPECT_FLOAT_EQ(s.region().max.y(), 0.02f);
+  EXPECT_EQ(s.targetLabel(), "capsule");
+  for (int i = 0; i < 3; ++i) s.step();
+  EXPECT_EQ(s.targetLabel(), "capsule");  // still no schedule
+
+  s.chooseNoTarget();
+  s.reset(true);
+  EXPECT_EQ(s.targetLabel(), "none");
+
+  s.reset(false);
+  EXPECT_FLOAT_EQ(s.params().fluid.viscosity, tinyScene().params.fluid.viscosity);
+  EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::All);
+  EXPECT_EQ(s.targetLabel(), "sphere");
+  EXPECT_TRUE(s.followsSchedule());
+  for (int i = 0; i < 3; ++i) s.step();
+  EXPECT_EQ(s.targetLabel(), "box");  // the schedule plays again
+}
+
+TEST(ViewerSession, ResetWarnsWhenTheKeptRegionHoldsNoFluidAtTimeZero) {
+  ff::SceneDesc scene = tinyScene();
+  scene.fluid[0].velocity = ff::Vec3(-1.0f, 0.0f, 0.0f);  // the block slides towards x = 0
+  ViewerSession s(scene, cpu());
+  for (int i = 0; i < 12; ++i) s.step();
+  ff::RegionDesc left;  // beside the block's start, where the fluid is now
+  left.kind = ff::RegionDesc::Kind::Box;
+  left.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  left.max = ff::Vec3(0.025f, 0.1f, 0.1f);
+  s.setRegion(left);
+  s.chooseTarget(shape(ff::TargetKind::Torus));
+  EXPECT_EQ(s.targetLabel(), "torus");
+  const std::string warning = s.reset(true);
+  EXPECT_NE(warning.find("the target was not applied"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("holds no fluid"), std::string::npos) << warning;
+  EXPECT_EQ(s.targetLabel(), "none");
+  EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::Box);  // kept, for the user to change
+  EXPECT_NO_THROW(s.step());
+}
+
+}  // namespace

@@ -321,11 +321,6 @@ int runViewer(const SceneDesc& scene, const ViewerOptions& options) {
   };
   const std::string gl_renderer = glText(GL_RENDERER);
   std::printf("flowform view: OpenGL %s, %s\n", glText(GL_VERSION).c_str(), gl_renderer.c_str());
-  if (gl_renderer.find("llvmpipe") != std::string::npos && session.sim().backend().name() == "cpu" &&
-      !std::getenv("OMP_WAIT_POLICY"))
-    std::printf(
-        "flowform view: hint: OpenGL runs on the CPU here (llvmpipe); with OMP_WAIT_POLICY=PASSIVE the "
-        "simulation's threads stop spinning against the renderer's (often 2x faster)\n");
 
   ViewerUi ui;
   initUi(ui, session, options);

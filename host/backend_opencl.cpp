@@ -14,6 +14,9 @@ OpenClBackend::Impl::Impl(int device_index)
   control_scale = makeKernel(program, "control_scale", ctx);
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
+  density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
+  forces_lanes = makeKernel(program, "forces_lanes", ctx, kLaneGroupCap);
+  control_forces_lanes = makeKernel(program, "control_forces_lanes", ctx, kLaneGroupCap);
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
   sm_particles = makeKernel(program, "sm_particles", ctx);
   m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 4 * sizeof(float));
@@ -21,12 +24,21 @@ OpenClBackend::Impl::Impl(int device_index)
   m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
   m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));
   m_iou = makeKernel(program, "metrics_iou", ctx, 256, 2 * sizeof(cl_uint));
+  m_iou_lanes = makeKernel(program, "metrics_iou_lanes", ctx, 256, 2 * sizeof(cl_uint));
   bad.ensure(ctx.context(), sizeof(cl_int));
   fillBuffer(ctx.queue(), bad, cl_int(0), 1);
 }
 
 OpenClBackend::OpenClBackend(int device_index)
-    : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })) {}
+    : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })) {
+  setKernelVariant(KernelVariant::Auto);
+}
+
+void OpenClBackend::setKernelVariant(KernelVariant v) {
+  lanes_ = v == KernelVariant::Lanes ||
+           (v == KernelVariant::Auto && (d_->ctx.info().type & CL_DEVICE_TYPE_CPU) != 0);
+  d_->grids.setChunkedScan(lanes_);
+}
 
 OpenClBackend::~OpenClBackend() = default;
 
@@ -60,7 +72,8 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
     upload(q, c, d.x[0], fluid.x), upload(q, c, d.y[0], fluid.y), upload(q, c, d.z[0], fluid.z);
     upload(q, c, d.vx[0], fluid.vx), upload(q, c, d.vy[0], fluid.vy), upload(q, c, d.vz[0], fluid.vz);
     upload(q, c, d.id[0], fluid.id);
-    for (DeviceBuffer* b : {&d.id[1], &d.rho, &d.p, &d.ax, &d.ay, &d.az}) b->ensure(c, n_ * sizeof(float));
+    d.id[1].ensure(c, n_ * sizeof(float));
+    for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) b->ensure(c, padded8(n_) * sizeof(float));
     fillBuffer(q, d.rho, params.fluid.rest_density, n_);
     for (DeviceBuffer* b : {&d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, n_);
     setParams(params);
@@ -143,9 +156,14 @@ void OpenClBackend::computeDensity() {
     const int tag = beginPhase(Phase::Density);
     const FluidParams& f = params_.fluid;
     const DeviceGrid& g = d.fluid_h;
-    launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(), g.geom.geo(),
-           g.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density, f.gas_constant, boxLo(box_),
-           boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
+    if (lanes_)
+      launch(d.queue(), d.density_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(),
+             g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius, f.particle_mass, f.rest_density,
+             f.gas_constant, boxLo(box_), boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
+    else
+      launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(), g.geom.geo(),
+             g.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density, f.gas_constant, boxLo(box_),
+             boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
     endPhase();
   });
 }
@@ -156,10 +174,17 @@ void OpenClBackend::computeForces() {
     const int tag = beginPhase(Phase::Forces);
     const FluidParams& f = params_.fluid;
     const DeviceGrid& g = d.fluid_h;
-    launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), d.p.get(),
-           cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass,
-           f.viscosity, f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f), boxLo(box_), boxHi(box_),
-           d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    const cl_float4 gravity = f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f);
+    if (lanes_)
+      launch(d.queue(), d.forces_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
+             d.rho.get(), d.p.get(), cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
+             f.smoothing_radius, f.particle_mass, f.viscosity, gravity, boxLo(box_), boxHi(box_), d.ax.get(),
+             d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    else
+      launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), d.p.get(),
+             cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass,
+             f.viscosity, gravity, boxLo(box_), boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
+             cl_int(tag));
     endPhase();
   });
 }

@@ -66,6 +66,15 @@ class OpenClBackend : public Backend {
   };
   GridSnapshot readGrid(GridKind kind);
   double shapeMatchingClock() const { return clock_; }
+  // How the neighbour phases (density, forces, control forces) map particles
+  // to work-items: one each (Scalar: for GPUs, which want many work-items) or
+  // 8 as float8 lanes (Lanes: for CPU devices, which then vectorise as the
+  // OpenMP backend). Auto (the default) picks by device type. The grid's
+  // prefix scan follows (serial chunks with Lanes, work-group scans with
+  // Scalar). The results are the same bit for bit.
+  enum class KernelVariant { Auto, Scalar, Lanes };
+  void setKernelVariant(KernelVariant v);
+  bool usesLanes() const { return lanes_; }
 
  private:
   struct Impl;              // device buffers and kernels
@@ -89,6 +98,7 @@ class OpenClBackend : public Backend {
   enum class GridState { Stale, Index, Sorted } grid_state_ = GridState::Stale;
   NonFiniteLog log_;
   bool profiling_ = true;
+  bool lanes_ = false;  // the float8-lane kernels (KernelVariant)
 };
 
 }  // namespace ff

@@ -20,6 +20,8 @@ struct OpenClBackend::Impl {
   GridBuilder grids;
   ClKernel reorder, density, forces, integrate;
   ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
+  ClKernel density_lanes, forces_lanes, control_forces_lanes;  // 8 particles per work-item
+  ClKernel m_iou_lanes;                                        // 8 voxels per work-item
   ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou;
 
   // Fluid, double-buffered for the reorder: [cur] holds the current state.
@@ -56,10 +58,14 @@ struct OpenClBackend::Impl {
   }
 };
 
-// Fluid buffers hold a multiple of 8 floats: kernels read 8 at a time (control_scale.cl).
+// Fluid buffers hold a multiple of 8 floats: kernels read 8 at a time (control_scale.cl, *_lanes).
 inline size_t padded8(size_t n) {
   return (n + 7) / 8 * 8;
 }
+// Work-groups of the lane kernels: at most this many work-items (of 8
+// particles each), so that a few thousand particles still make several
+// work-groups per CPU thread.
+constexpr size_t kLaneGroupCap = 32;
 inline const float* boxMin(const ContainerDesc& b) {
   return b.min.data();
 }

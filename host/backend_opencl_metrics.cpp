@@ -80,17 +80,29 @@ StepMetrics OpenClBackend::computeMetrics() {
     }
     const VoxelGrid& g = target_->grid;
     const int pad = 2;
-    const size_t total = size_t(g.nx + 2 * pad) * size_t(g.ny + 2 * pad) * size_t(g.nz + 2 * pad);
+    // Voxels (one per work-item), or runs of 8 along x (float8 lanes).
+    const size_t runs = lanes_ ? size_t(g.nx + 2 * pad + 7) / 8 : size_t(g.nx + 2 * pad);
+    const size_t total = runs * size_t(g.ny + 2 * pad) * size_t(g.nz + 2 * pad);
     const ff_mat3 r = ff_quat_to_mat3(frame_.q);
-    const size_t local = d.m_iou.pow2_local, groups = Impl::reduceGroups(total, local);
+    ClKernel& k = lanes_ ? d.m_iou_lanes : d.m_iou;
+    const size_t local = k.pow2_local, groups = Impl::reduceGroups(total, local);
     d.partial.ensure(c, groups * 2 * sizeof(cl_uint));
-    launchGroups(q, d.m_iou, groups, local, d.inside.get(), i4(g.nx, g.ny, g.nz, pad),
-                 f4(g.origin.x(), g.origin.y(), g.origin.z(), g.voxel), f4(r.c0.x, r.c0.y, r.c0.z, 0.0f),
-                 f4(r.c1.x, r.c1.y, r.c1.z, 0.0f), f4(r.c2.x, r.c2.y, r.c2.z, 0.0f),
-                 f4(frame_.c[0], frame_.c[1], frame_.c[2], 0.0f),
-                 f4(frame_.rest_c[0], frame_.rest_c[1], frame_.rest_c[2], 0.0f), d.X(), d.Y(), d.Z(),
-                 d.fluid_h.order.get(), d.fluid_h.start.get(), d.fluid_h.geom.geo(), d.fluid_h.geom.dims(), h,
-                 mass, 0.5f * rho0, d.partial.get(), cl::Local(local * 2 * sizeof(cl_uint)));
+    const cl_int4 tdims = i4(g.nx, g.ny, g.nz, pad);
+    const cl_float4 torigin = f4(g.origin.x(), g.origin.y(), g.origin.z(), g.voxel);
+    const cl_float4 r0 = f4(r.c0.x, r.c0.y, r.c0.z, 0.0f), r1 = f4(r.c1.x, r.c1.y, r.c1.z, 0.0f),
+                    r2 = f4(r.c2.x, r.c2.y, r.c2.z, 0.0f);
+    const cl_float4 fc = f4(frame_.c[0], frame_.c[1], frame_.c[2], 0.0f),
+                    rc = f4(frame_.rest_c[0], frame_.rest_c[1], frame_.rest_c[2], 0.0f);
+    const DeviceGrid& fg = d.fluid_h;
+    const cl::LocalSpaceArg tmp = cl::Local(local * 2 * sizeof(cl_uint));
+    if (lanes_)
+      launchGroups(q, k, groups, local, d.inside.get(), tdims, torigin, r0, r1, r2, fc, rc, d.X(), d.Y(),
+                   d.Z(), fg.order.get(), fg.start.get(), fg.geom.geo(), fg.geom.dims(), fg.geom.cell, h,
+                   mass, 0.5f * rho0, d.partial.get(), tmp);
+    else
+      launchGroups(q, k, groups, local, d.inside.get(), tdims, torigin, r0, r1, r2, fc, rc, d.X(), d.Y(),
+                   d.Z(), fg.order.get(), fg.start.get(), fg.geom.geo(), fg.geom.dims(), h, mass, 0.5f * rho0,
+                   d.partial.get(), tmp);
     d.partial_uint.resize(groups * 2);
     q.enqueueReadBuffer(d.partial.get(), CL_TRUE, 0, groups * 2 * sizeof(cl_uint), d.partial_uint.data());
     long inter = 0, uni = 0;

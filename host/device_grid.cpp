@@ -27,13 +27,29 @@ GridBuilder::GridBuilder(ClContext& cl, const cl::Program& program) : cl_(cl) {
   scan_add_ = makeKernel(program, "scan_add", cl);
   scatter_ = makeKernel(program, "grid_scatter", cl);
   rank_ = makeKernel(program, "grid_rank", cl);
+  scan_chunk_ = makeKernel(program, "scan_chunk", cl);
+  scan_chunk_add_ = makeKernel(program, "scan_chunk_add", cl);
   scan_local_ = std::min(scan_block_.pow2_local, scan_add_.pow2_local);
+  chunked_scan_ = (cl.info().type & CL_DEVICE_TYPE_CPU) != 0;
 }
 
+// Values per work-item of the CPU devices' scan.
+constexpr size_t kScanChunk = 256;
+
 void GridBuilder::scan(cl::Buffer data, size_t m, size_t level) {
-  const size_t local = scan_local_, blocks = (m + local - 1) / local;
   if (scan_sums_.size() <= level) scan_sums_.resize(level + 1);
   DeviceBuffer& sums = scan_sums_[level];
+  if (chunked_scan_) {
+    const size_t chunks = (m + kScanChunk - 1) / kScanChunk;
+    sums.ensure(cl_.context(), chunks * sizeof(cl_uint));
+    launch(cl_.queue(), scan_chunk_, chunks, data, cl_uint(m), cl_uint(kScanChunk), sums.get());
+    if (chunks > 1) {
+      scan(sums.get(), chunks, level + 1);
+      launch(cl_.queue(), scan_chunk_add_, chunks, data, cl_uint(m), cl_uint(kScanChunk), sums.get());
+    }
+    return;
+  }
+  const size_t local = scan_local_, blocks = (m + local - 1) / local;
   sums.ensure(cl_.context(), blocks * sizeof(cl_uint));
   launchGroups(cl_.queue(), scan_block_, blocks, local, data, cl_uint(m), sums.get(),
                cl::Local(local * sizeof(cl_uint)));

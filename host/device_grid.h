@@ -45,6 +45,9 @@ class GridBuilder {
   // which holds every point (at most gridCellCap(n) cells).
   void build(DeviceGrid& g, const cl::Buffer& x, const cl::Buffer& y, const cl::Buffer& z, size_t n,
              float cell, const float lo[3], const float hi[3]);
+  // The prefix scan as serial chunks per work-item (CPU devices, the default
+  // there) or as work-group scans (GPUs). Either gives the same grid.
+  void setChunkedScan(bool on) { chunked_scan_ = on; }
   // Bytes of the build's scratch (shared by every grid) and the scan's block sums.
   size_t memoryBytes() const {
     size_t b = cell_of_.capacity() + slots_.capacity() + fill_.capacity();
@@ -56,6 +59,8 @@ class GridBuilder {
   void scan(cl::Buffer data, size_t m, size_t level);
   ClContext& cl_;
   ClKernel count_, scan_block_, scan_add_, scatter_, rank_;
+  ClKernel scan_chunk_, scan_chunk_add_;  // the scan on CPU devices: serial chunks, no barriers
+  bool chunked_scan_ = false;
   size_t scan_local_ = 1;
   DeviceBuffer cell_of_, slots_, fill_;  // build scratch: cell of each point, scatter slots, per-cell fill
   std::deque<DeviceBuffer> scan_sums_;   // one per level (a deque keeps references valid as it grows)

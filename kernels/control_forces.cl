@@ -3,10 +3,14 @@
 // the share of gravity the control carries. Control particles are found
 // through their own grid (cell size = the control radius), gathered into cell
 // order first. Mirrors Controller::addForces in src/control/controller.cpp.
+// Two kernels with the same sums, as density.cl: `control_forces` (one fluid
+// particle per work-item: for GPUs) and `control_forces_lanes` (8 per
+// work-item as float8 lanes, ff_lanes.h: for CPU devices).
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_check.h"
 #include "ff_control.h"
 #include "ff_grid.h"
+#include "ff_lanes.h"
 #include "ff_sph.h"
 
 // Control particles (position, s, velocity) copied into their grid's order.
@@ -20,6 +24,28 @@ __kernel void control_gather(__global const uint* order, uint nc, __global const
   const uint i = order[k];
   sx[k] = x[i], sy[k] = y[i], sz[k] = z[i], ss[k] = s[i];
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
+}
+
+// The accelerations of fluid particle e from its sums over the control
+// particles: attraction fa, weight wsum and weighted velocity vs*.
+inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, float vsy, float vsz,
+                                  __global const float* vx, __global const float* vy,
+                                  __global const float* vz, __global const float* rho, float cp_volume,
+                                  float full_at, float wa, float wv, float gc, int per_density,
+                                  float unit_scale, float4 gravity, float dt, __global float* ax,
+                                  __global float* ay, __global float* az, __global int* bad, int tag) {
+  if (wsum <= 0.0f) return;
+  const float scale = per_density ? 1.0f / rho[e] : unit_scale;
+  const float kk = wv * wsum * scale;
+  fa = fa * (wa * scale);
+  // Gravity carried by the control (all of it inside the shape).
+  const float held = gc * ff_control_held(wsum, cp_volume, full_at);
+  fa = fa - FF_F3(gravity.x, gravity.y, gravity.z) * held;
+  const float rx = ax[e] + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
+  const float ry = ay[e] + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
+  const float rz = az[e] + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
+  ax[e] = rx, ay[e] = ry, az[e] = rz;
+  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
 }
 
 // per_density: divide by rho_e (force density); else multiply by unit_scale (1, or 1 / m for a force).
@@ -66,16 +92,60 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       }
     }
   }
-  if (wsum <= 0.0f) return;
-  const float scale = per_density ? 1.0f / rho[e] : unit_scale;
-  const float kk = wv * wsum * scale;
-  fa = fa * (wa * scale);
-  // Gravity carried by the control (all of it inside the shape).
-  const float held = gc * ff_control_held(wsum, cp_volume, full_at);
-  fa = fa - FF_F3(gravity.x, gravity.y, gravity.z) * held;
-  const float rx = ax[e] + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
-  const float ry = ay[e] + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
-  const float rz = az[e] + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
-  ax[e] = rx, ay[e] = ry, az[e] = rz;
-  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
+  control_forces_finish(e, fa, wsum, vsx, vsy, vsz, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
+                        per_density, unit_scale, gravity, dt, ax, ay, az, bad, tag);
+}
+
+// The same sums, 8 fluid particles per work-item (the fluid buffers hold a multiple of 8 floats).
+__kernel void control_forces_lanes(__global const float* x, __global const float* y, __global const float* z,
+                                   __global const float* vx, __global const float* vy,
+                                   __global const float* vz, __global const float* rho, uint n,
+                                   __global const float* sx, __global const float* sy,
+                                   __global const float* sz, __global const float* ss,
+                                   __global const float* svx, __global const float* svy,
+                                   __global const float* svz, __global const uint* start, float4 geo,
+                                   int4 dims, float cell, float radius, float cp_volume, float full_at,
+                                   float wa, float wv, float gc, int per_density, float unit_scale,
+                                   float4 gravity, float dt, __global float* ax, __global float* ay,
+                                   __global float* az, __global int* bad, int tag) {
+  const uint i0 = 8u * get_global_id(0);
+  if (i0 >= n) return;
+  const float r2 = radius * radius, coef = ff_poly6_coef(radius);
+  const int8 valid = ff_lane_valid(i0, n);
+  const float8 xe = ff_load_lanes(x, i0, valid, FF_LANE_FAR), ye = ff_load_lanes(y, i0, valid, FF_LANE_FAR),
+               ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
+  const float lo[3] = {ff_lanes_min(xe, valid), ff_lanes_min(ye, valid), ff_lanes_min(ze, valid)};
+  const float hi[3] = {ff_lanes_max(xe, valid), ff_lanes_max(ye, valid), ff_lanes_max(ze, valid)};
+  const float o[3] = {geo.x, geo.y, geo.z};
+  const int nn[3] = {dims.x, dims.y, dims.z};
+  const float reach = ff_query_reach(radius, cell);
+  const int z0 = ff_cell_coord(lo[2] - reach, o[2], geo.w, nn[2]),
+            z1 = ff_cell_coord(hi[2] + reach, o[2], geo.w, nn[2]);
+  const int y0 = ff_cell_coord(lo[1] - reach, o[1], geo.w, nn[1]),
+            y1 = ff_cell_coord(hi[1] + reach, o[1], geo.w, nn[1]);
+  const float8 zero = (float8)(0.0f);
+  float8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
+  for (int cz = z0; cz <= z1; ++cz)
+    for (int cy = y0; cy <= y1; ++cy) {
+      uint b, en;
+      if (!ff_row_span(start, lo, hi, reach, cy, cz, o, cell, geo.w, nn, &b, &en)) continue;
+      for (uint k = b; k < en; ++k) {
+        const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
+        const float8 d2 = dx * dx + dy * dy + dz * dz;
+        if (!any(d2 < r2)) continue;  // no lane in reach: every term is 0
+        const float8 w = ff_poly6_8(d2, r2, coef);
+        const float8 a = ff_attraction_factor_8(sqrt(d2), ss[k], w);
+        fax += dx * a, fay += dy * a, faz += dz * a;
+        wsum += w;
+        vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+      }
+    }
+  float s[7][8];
+  vstore8(fax, 0, s[0]), vstore8(fay, 0, s[1]), vstore8(faz, 0, s[2]), vstore8(wsum, 0, s[3]);
+  vstore8(vsx, 0, s[4]), vstore8(vsy, 0, s[5]), vstore8(vsz, 0, s[6]);
+  const uint m = n - i0 < 8u ? n - i0 : 8u;
+  for (uint l = 0; l < m; ++l)
+    control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], vx,
+                          vy, vz, rho, cp_volume, full_at, wa, wv, gc, per_density, unit_scale, gravity, dt,
+                          ax, ay, az, bad, tag);
 }

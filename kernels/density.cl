@@ -2,14 +2,34 @@
 // term (the walls' shares combined as in ff_combine_wall_fractions),
 // p_i = k (rho_i - rho0). Mirrors computeDensityPressure in
 // src/cpu/fluid_cpu.cpp term by term and in the same summation order
-// (neighbours in ascending sorted order; walls x, y, z, low then high). The
-// grid's cells are at least h wide, so the 27 cells around a particle hold its
-// neighbours (pruning them to the sphere, as the OpenMP backend does, changes
-// no sum but made PoCL's vectorised work-groups slower here).
+// (neighbours in ascending sorted order; walls x, y, z, low then high).
+// Two kernels with the same sums: `density` (one particle per work-item, the
+// 27 cells around it: for GPUs) and `density_lanes` (8 particles per
+// work-item as float8 lanes, ff_lanes.h: for CPU devices).
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_check.h"
 #include "ff_grid.h"
+#include "ff_lanes.h"
 #include "ff_sph.h"
+
+// Density and pressure of particle i from its neighbour sum.
+inline void density_finish(uint i, float xi, float yi, float zi, float sum, float h, float coef, float mass,
+                           float rho0, float gas_k, float4 box_lo, float4 box_hi, __global float* rho_out,
+                           __global float* p_out, __global int* bad, int tag) {
+  const float pos[3] = {xi, yi, zi}, lo[3] = {box_lo.x, box_lo.y, box_lo.z},
+              hi[3] = {box_hi.x, box_hi.y, box_hi.z};
+  float fluid_side = 1.0f;  // the kernel's share on the fluid side of every wall within h
+  for (int d = 0; d < 3; ++d) {
+    const float dlo = pos[d] - lo[d], dhi = hi[d] - pos[d];
+    if (dlo < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dlo, h, coef);
+    if (dhi < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dhi, h, coef);
+  }
+  const float rho = mass * sum + rho0 * ff_combine_wall_fractions(fluid_side);
+  const float p = ff_pressure(rho, rho0, gas_k);
+  rho_out[i] = rho;
+  p_out[i] = p;
+  if (!isfinite(rho) || !isfinite(p)) ff_report_nonfinite(bad, tag);
+}
 
 __kernel void density(__global const float* x, __global const float* y, __global const float* z, uint n,
                       __global const uint* start, float4 geo, int4 dims, float h, float mass, float rho0,
@@ -28,17 +48,43 @@ __kernel void density(__global const float* x, __global const float* y, __global
       const float dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
       sum += ff_poly6(dx * dx + dy * dy + dz * dz, h2, coef);
     }
-  const float pos[3] = {xi, yi, zi}, lo[3] = {box_lo.x, box_lo.y, box_lo.z},
-              hi[3] = {box_hi.x, box_hi.y, box_hi.z};
-  float fluid_side = 1.0f;  // the kernel's share on the fluid side of every wall within h
-  for (int d = 0; d < 3; ++d) {
-    const float dlo = pos[d] - lo[d], dhi = hi[d] - pos[d];
-    if (dlo < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dlo, h, coef);
-    if (dhi < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dhi, h, coef);
-  }
-  const float rho = mass * sum + rho0 * ff_combine_wall_fractions(fluid_side);
-  const float p = ff_pressure(rho, rho0, gas_k);
-  rho_out[i] = rho;
-  p_out[i] = p;
-  if (!isfinite(rho) || !isfinite(p)) ff_report_nonfinite(bad, tag);
+  density_finish(i, xi, yi, zi, sum, h, coef, mass, rho0, gas_k, box_lo, box_hi, rho_out, p_out, bad, tag);
+}
+
+// cell: the grid's cell size (1 / geo.w).
+__kernel void density_lanes(__global const float* x, __global const float* y, __global const float* z, uint n,
+                            __global const uint* start, float4 geo, int4 dims, float cell, float h,
+                            float mass, float rho0, float gas_k, float4 box_lo, float4 box_hi,
+                            __global float* rho_out, __global float* p_out, __global int* bad, int tag) {
+  const uint i0 = 8u * get_global_id(0);
+  if (i0 >= n) return;
+  const float h2 = h * h, coef = ff_poly6_coef(h);
+  const int8 valid = ff_lane_valid(i0, n);
+  const float8 xi = ff_load_lanes(x, i0, valid, FF_LANE_FAR), yi = ff_load_lanes(y, i0, valid, FF_LANE_FAR),
+               zi = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
+  const float lo[3] = {ff_lanes_min(xi, valid), ff_lanes_min(yi, valid), ff_lanes_min(zi, valid)};
+  const float hi[3] = {ff_lanes_max(xi, valid), ff_lanes_max(yi, valid), ff_lanes_max(zi, valid)};
+  const float o[3] = {geo.x, geo.y, geo.z};
+  const int nn[3] = {dims.x, dims.y, dims.z};
+  const float reach = ff_query_reach(h, cell);
+  const int z0 = ff_cell_coord(lo[2] - reach, o[2], geo.w, nn[2]),
+            z1 = ff_cell_coord(hi[2] + reach, o[2], geo.w, nn[2]);
+  const int y0 = ff_cell_coord(lo[1] - reach, o[1], geo.w, nn[1]),
+            y1 = ff_cell_coord(hi[1] + reach, o[1], geo.w, nn[1]);
+  float8 sum = (float8)(0.0f);
+  for (int cz = z0; cz <= z1; ++cz)
+    for (int cy = y0; cy <= y1; ++cy) {
+      uint b, e;
+      if (!ff_row_span(start, lo, hi, reach, cy, cz, o, cell, geo.w, nn, &b, &e)) continue;
+      for (uint j = b; j < e; ++j) {
+        const float8 dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
+        sum += ff_poly6_8(dx * dx + dy * dy + dz * dz, h2, coef);
+      }
+    }
+  float xs[8], ys[8], zs[8], sums[8];
+  vstore8(xi, 0, xs), vstore8(yi, 0, ys), vstore8(zi, 0, zs), vstore8(sum, 0, sums);
+  const uint m = n - i0 < 8u ? n - i0 : 8u;
+  for (uint l = 0; l < m; ++l)
+    density_finish(i0 + l, xs[l], ys[l], zs[l], sums[l], h, coef, mass, rho0, gas_k, box_lo, box_hi, rho_out,
+                   p_out, bad, tag);
 }

@@ -38,6 +38,30 @@ __kernel void scan_block(__global uint* data, uint n, __global uint* block_sums,
   if (lid == ls - 1) block_sums[get_group_id(0)] = tmp[lid];
 }
 
+// The same for CPU devices, where barriers are costly: each work-item scans
+// `chunk` consecutive values in place, one after the other (exclusive), and
+// writes their total to block_sums[its index].
+__kernel void scan_chunk(__global uint* data, uint n, uint chunk, __global uint* block_sums) {
+  const uint g = get_global_id(0), b = g * chunk;
+  if (b >= n) return;
+  const uint e = n - b < chunk ? n : b + chunk;
+  uint total = 0u;
+  for (uint i = b; i < e; ++i) {
+    const uint v = data[i];
+    data[i] = total;
+    total += v;
+  }
+  block_sums[g] = total;
+}
+
+// Adds the scanned totals of scan_chunk to the values of their chunk.
+__kernel void scan_chunk_add(__global uint* data, uint n, uint chunk, __global const uint* block_offsets) {
+  const uint g = get_global_id(0), b = g * chunk;
+  if (b >= n) return;
+  const uint e = n - b < chunk ? n : b + chunk, add = block_offsets[g];
+  for (uint i = b; i < e; ++i) data[i] += add;
+}
+
 // Adds the scanned block totals to every value of their block.
 __kernel void scan_add(__global uint* data, uint n, __global const uint* block_offsets) {
   const uint i = get_global_id(0);

@@ -79,4 +79,21 @@ FF_FN int ff_row_cells(float lo_x, float hi_x, float g2, float reach, float o, f
   return 1;
 }
 
+/* The sorted range [*b, *e) of row (y, z) that can hold points within reach
+ * of the box [lo, hi] (as UniformGrid::rangesNear visits it), for a grid with
+ * origin o, cell size `cell` (inverse inv_cell) and n cells per axis. Returns
+ * 0 (and an empty range) when the row is out of reach. */
+FF_FN int ff_row_span(FF_GLOBAL const uint* start, const float lo[3], const float hi[3], float reach, int y,
+                      int z, const float o[3], float cell, float inv_cell, const int n[3], uint* b, uint* e) {
+  const float gy = ff_slab_gap(lo[1], hi[1], y, n[1], o[1], cell);
+  const float gz = ff_slab_gap(lo[2], hi[2], z, n[2], o[2], cell);
+  int x0, x1;
+  *b = 0, *e = 0;
+  if (!ff_row_cells(lo[0], hi[0], gy * gy + gz * gz, reach, o[0], inv_cell, n[0], &x0, &x1)) return 0;
+  const uint row = ff_cell_index(0, y, z, n[0], n[1]);
+  *b = start[row + (uint)x0];
+  *e = start[row + (uint)x1 + 1u];
+  return 1;
+}
+
 #endif /* FF_GRID_H */

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
+#include "cpu/parallel_grain.h"
 #include "cpu/simd8.h"
 #include "ff_control.h"
 #include "ff_sph.h"
@@ -277,7 +278,7 @@ bool Controller::shapeMatchStep() {
   const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback, damp = sm_.damping;
   const Clusters& cl = set_.clusters;
   int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad)
+#pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);

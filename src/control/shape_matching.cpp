@@ -1,5 +1,7 @@
 #include "control/shape_matching.h"
 
+#include "cpu/parallel_grain.h"
+
 namespace ff {
 
 void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx,
@@ -36,7 +38,7 @@ void clusterVelocities(const ControlSet& set, std::vector<float>& vx, std::vecto
   const Clusters& cl = set.clusters;
   const long nc = long(cl.count());
   vx.resize(size_t(nc)), vy.resize(size_t(nc)), vz.resize(size_t(nc));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nc > kParallelLightLoop)
   for (long c = 0; c < nc; ++c) {
     float sx = 0, sy = 0, sz = 0;
     for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
@@ -54,7 +56,7 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
   const Clusters& cl = set.clusters;
   const long n = long(set.size());
   gx.resize(size_t(n)), gy.resize(size_t(n)), gz.resize(size_t(n));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
   for (long p = 0; p < n; ++p) {
     ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
     const uint32_t b = cl.of_start[p], e = cl.of_start[p + 1];

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
+#include "cpu/parallel_grain.h"
 
 namespace ff {
 
@@ -119,7 +120,8 @@ StepMetrics CpuBackend::computeMetrics() {
   const long n = long(s.size());
   const float rho0 = params_.fluid.rest_density, mass = params_.fluid.particle_mass;
   double derr = 0.0, ke = 0.0, vmax2 = 0.0, rho_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : derr, ke) reduction(max : vmax2, rho_max)
+#pragma omp parallel for schedule(static) reduction(+ : derr, ke) reduction(max : vmax2, rho_max) \
+    if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     derr += std::fabs(fluid_.rho[i] - rho0) / rho0;
     rho_max = std::max(rho_max, double(fluid_.rho[i]));

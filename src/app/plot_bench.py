@@ -9,6 +9,7 @@ for it, and prints "wrote FILE" for each. Exit 3: matplotlib is missing.
 """
 import csv
 import sys
+import textwrap
 from collections import OrderedDict
 
 try:
@@ -59,8 +60,9 @@ def table1(rows, stem):
     ax.set_xticklabels(["%s\n%s control" % (s, next(r["control"] for r in rows if r["scene"] == s))
                         for s in scenes])
     ax.set_ylabel("ms per step (median)")
-    ax.set_title("Table 1 scenes, 12k fluid particles; bars left to right: " + ", ".join(backends),
-                 fontsize=8)
+    title = "Table 1 scenes, 12k fluid particles (sums of phase medians); bars left to right: " + "; ".join(
+        backends)
+    ax.set_title(textwrap.fill(title, 120), fontsize=8)
     ax.legend(fontsize=7, ncol=2)
     fig.tight_layout()
     out = stem + "_table1.png"

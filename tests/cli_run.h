@@ -16,14 +16,10 @@ struct CliResult {
   std::string out;  // stdout and stderr together
 };
 
-// Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the shared test meshes;
-// `env` holds further assignments for its environment (e.g. "PATH=/nonexistent "),
-// which may override FLOWFORM_MESH_PATH.
-inline CliResult runFlowform(const std::string& args, const std::string& env = "") {
-  const std::string cmd = "FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' " + env + "'" +
-                          std::string(FF_FLOWFORM_EXE) + "' " + args + " 2>&1";
+// Runs a shell command line; stdout and stderr together.
+inline CliResult runShell(const std::string& cmd) {
   CliResult r;
-  FILE* p = popen(cmd.c_str(), "r");
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
   if (!p) return r;
   char buf[4096];
   size_t n;
@@ -31,6 +27,14 @@ inline CliResult runFlowform(const std::string& args, const std::string& env = "
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the shared test meshes;
+// `env` holds further assignments for its environment (e.g. "PATH=/nonexistent "),
+// which may override FLOWFORM_MESH_PATH.
+inline CliResult runFlowform(const std::string& args, const std::string& env = "") {
+  return runShell("FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' " + env + " '" + std::string(FF_FLOWFORM_EXE) +
+                  "' " + args);
 }
 
 // A fresh, empty folder in the temp directory, unique to this process.

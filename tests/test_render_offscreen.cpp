@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "core/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "render/camera.h"
@@ -259,31 +260,11 @@ TEST(RenderOffscreen, TargetChangeShowsWhereTheLiquidMoved) {
 
 // ---- the `flowform render` command ---------------------------------------------
 
-struct CliResult {
-  int code = -1;
-  std::string out;
-};
-
-// Runs `flowform ARGS` with the environment assignments `env` in front.
-CliResult runFlowform(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + " '" + std::string(FF_FLOWFORM_EXE) + "' " + args + " 2>&1";
-  CliResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using fftest::CliResult;
+using fftest::runFlowform;
 
 fs::path freshDir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("flowform_render_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fftest::freshTempDir("render_" + name);
 }
 
 // A scene that simulates in moments: 512 particles, a sphere target.

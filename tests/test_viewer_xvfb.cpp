@@ -13,33 +13,20 @@
 #include <set>
 #include <string>
 
+#include "cli_run.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;
-};
+using Result = fftest::CliResult;
 
-// Runs a shell command line, stdout and stderr together.
 Result shell(const std::string& cmd) {
-  Result r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return fftest::runShell(cmd);
 }
 
 fs::path tempDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("flowform_view_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fftest::freshTempDir("view_" + name);
 }
 
 // 1000 particles in a 0.2 m box, a sphere target from the start.

@@ -16,6 +16,7 @@
 
 #include "core/embedded.h"
 #include "core/error.h"
+#include "core/text_file.h"
 #include "scene/scene.h"
 
 namespace ff {
@@ -542,16 +543,7 @@ SceneDesc parseScene(const std::string& json_text, const std::string& source, co
 }
 
 SceneDesc loadScene(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
-  std::string text;
-  char buf[65536];
-  size_t got;
-  while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
-  const int err = std::ferror(f) ? errno : 0;
-  std::fclose(f);
-  if (err != 0 || (text.empty() && std::filesystem::is_directory(path)))
-    throw Error(path + ": cannot open scene file (" + std::strerror(err != 0 ? err : EISDIR) + ")");
+  const std::string text = readTextFile(path, "scene");
 
   const std::filesystem::path p(path);
   std::string dir = p.parent_path().string();

@@ -11,6 +11,7 @@
 #include <initializer_list>
 
 #include "core/error.h"
+#include "core/text_file.h"
 #include "scene/scene_json.h"
 
 namespace ff::viewer {
@@ -238,16 +239,7 @@ Script parseScript(const std::string& text, const std::string& source, const std
 }
 
 Script loadScript(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw Error(path + ": cannot open script file (" + std::strerror(errno) + ")");
-  std::string text;
-  char buf[65536];
-  size_t got;
-  while ((got = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, got);
-  const int err = std::ferror(f) ? errno : 0;
-  std::fclose(f);
-  if (err != 0 || (text.empty() && std::filesystem::is_directory(path)))
-    throw Error(path + ": cannot open script file (" + std::strerror(err != 0 ? err : EISDIR) + ")");
+  const std::string text = readTextFile(path, "script");
   std::string dir = std::filesystem::path(path).parent_path().string();
   if (dir.empty()) dir = ".";
   return parseScript(text, path, dir);

@@ -97,17 +97,14 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
 }
 
 // The same sums, 8 fluid particles per work-item (the fluid buffers hold a multiple of 8 floats).
-__kernel void control_forces_lanes(__global const float* x, __global const float* y, __global const float* z,
-                                   __global const float* vx, __global const float* vy,
-                                   __global const float* vz, __global const float* rho, uint n,
-                                   __global const float* sx, __global const float* sy,
-                                   __global const float* sz, __global const float* ss,
-                                   __global const float* svx, __global const float* svy,
-                                   __global const float* svz, __global const uint* start, float4 geo,
-                                   int4 dims, float cell, float radius, float cp_volume, float full_at,
-                                   float wa, float wv, float gc, int per_density, float unit_scale,
-                                   float4 gravity, float dt, __global float* ax, __global float* ay,
-                                   __global float* az, __global int* bad, int tag) {
+__kernel void control_forces_lanes(
+    __global const float* x, __global const float* y, __global const float* z, __global const float* vx,
+    __global const float* vy, __global const float* vz, __global const float* rho, uint n,
+    __global const float* sx, __global const float* sy, __global const float* sz, __global const float* ss,
+    __global const float* svx, __global const float* svy, __global const float* svz,
+    __global const uint* start, float4 geo, int4 dims, float cell, float radius, float cp_volume,
+    float full_at, float wa, float wv, float gc, int per_density, float unit_scale, float4 gravity, float dt,
+    __global float* ax, __global float* ay, __global float* az, __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);

@@ -56,11 +56,11 @@ __kernel void forces(__global const float* x, __global const float* y, __global 
       const float rhoj = rho[j];
       const float g = ff_spiky_grad_factor(dist, h, grad_coef);  // grad W = -g r_ij
       if (g != 0.0f) {
-        const float c = mass * (pi + p[j]) / (2.0f * rhoj) * g;
+        const float c = ff_pressure_pair(g, pi, p[j], rhoj, mass);
         px += c * dx, py += c * dy, pz += c * dz;
       }
       if (viscous) {
-        const float c = mass * ff_visc_lap(dist, h, lap_coef) / rhoj;
+        const float c = ff_visc_pair(ff_visc_lap(dist, h, lap_coef), rhoj, mass);
         fx += c * (vx[j] - vxi), fy += c * (vy[j] - vyi), fz += c * (vz[j] - vzi);
       }
     }
@@ -106,10 +106,10 @@ __kernel void forces_lanes(__global const float* x, __global const float* y, __g
         const float8 dist = sqrt(dx * dx + dy * dy + dz * dz);
         const float rhoj = rho[j];
         const float8 g = ff_spiky_grad_factor_8(dist, h, grad_coef);  // grad W = -g r_ij
-        const float8 c = g != 0.0f ? mass * (pi + p[j]) / (2.0f * rhoj) * g : zero;
+        const float8 c = ff_pressure_pair_8(g, pi, p[j], rhoj, mass);
         px += c * dx, py += c * dy, pz += c * dz;
         if (viscous) {
-          const float8 cv = mass * ff_visc_lap_8(dist, h, lap_coef) / rhoj;
+          const float8 cv = ff_visc_pair_8(ff_visc_lap_8(dist, h, lap_coef), rhoj, mass);
           fx += cv * (vx[j] - vxi), fy += cv * (vy[j] - vyi), fz += cv * (vz[j] - vzi);
         }
       }

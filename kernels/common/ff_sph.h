@@ -39,6 +39,23 @@ FF_GENERIC(FF_SPIKY_GRAD_FACTOR_DEF, ff_spiky_grad_factor)
   }
 FF_GENERIC(FF_VISC_LAP_DEF, ff_visc_lap)
 
+/* Muller et al. 2003 pair terms of fluid particle i from neighbour j, with the
+ * spiky gradient factor g (grad W = -g r_ij) and the viscosity Laplacian lap:
+ *   pressure:  a_i += c r_ij,          c = m (p_i + p_j) / (2 rho_j) g
+ *   viscosity: a_i += c_v (v_j - v_i), c_v = m lap / rho_j
+ * (divided by rho_i once the sums are done). c is exactly 0 where g is. */
+#define FF_PRESSURE_PAIR_DEF(T, name)                                        \
+  FF_FN T name(T g, T pi, float pj, float rhoj, float mass) {                \
+    return g != 0.0f ? mass * (pi + pj) / (2.0f * rhoj) * g : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_PRESSURE_PAIR_DEF, ff_pressure_pair)
+
+#define FF_VISC_PAIR_DEF(T, name)               \
+  FF_FN T name(T lap, float rhoj, float mass) { \
+    return mass * lap / rhoj;                   \
+  }
+FF_GENERIC(FF_VISC_PAIR_DEF, ff_visc_pair)
+
 /* Equation of state p = k (rho - rho0). */
 FF_FN float ff_pressure(float rho, float rho0, float k) {
   return k * (rho - rho0);

@@ -117,10 +117,10 @@ FF_SIMD_CLONES void forceSums(const CpuFluid& f, uint32_t b, uint32_t e, float h
       const f8 dist = simd::sqrt8(dx * dx + dy * dy + dz * dz);
       const float rhoj = rho[j];
       const f8 grad = ff_spiky_grad_factor(dist, h, grad_coef);  // grad W = -g r_ij
-      const f8 c = grad != 0.0f ? mass * (pi + p[j]) / (2.0f * rhoj) * grad : zero;
+      const f8 c = ff_pressure_pair(grad, pi, p[j], rhoj, mass);
       px += c * dx, py += c * dy, pz += c * dz;
       if (viscous) {
-        const f8 cv = mass * ff_visc_lap(dist, h, lap_coef) / rhoj;
+        const f8 cv = ff_visc_pair(ff_visc_lap(dist, h, lap_coef), rhoj, mass);
         fx += cv * (vx[j] - vxi), fy += cv * (vy[j] - vyi), fz += cv * (vz[j] - vzi);
       }
     }

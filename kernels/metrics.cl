@@ -96,6 +96,18 @@ inline ff_float3 ff_voxel_world(float4 torigin, ff_mat3 r, float4 frame_c, float
          FF_F3(frame_c.x, frame_c.y, frame_c.z);
 }
 
+// Sums the work-group's (intersection, union) voxel counts into partial[2 g], partial[2 g + 1].
+void reduce_iou_counts(uint inter, uint uni, __global uint* partial, __local uint* tmp) {
+  const uint lid = get_local_id(0);
+  tmp[2 * lid] = inter, tmp[2 * lid + 1] = uni;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint s = get_local_size(0) / 2; s > 0; s >>= 1) {
+    if (lid < s) tmp[2 * lid] += tmp[2 * (lid + s)], tmp[2 * lid + 1] += tmp[2 * (lid + s) + 1];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid == 0) partial[2 * get_group_id(0)] = tmp[0], partial[2 * get_group_id(0) + 1] = tmp[1];
+}
+
 __kernel void metrics_iou(__global const uchar* inside, int4 tdims /* nx, ny, nz, pad */,
                           float4 torigin /* origin xyz, voxel */, float4 rot0, float4 rot1, float4 rot2,
                           float4 frame_c, float4 rest_c, __global const float* x, __global const float* y,
@@ -129,14 +141,7 @@ __kernel void metrics_iou(__global const uchar* inside, int4 tdims /* nx, ny, nz
     inter += (in_target && in_fluid) ? 1u : 0u;
     uni += (in_target || in_fluid) ? 1u : 0u;
   }
-  const uint lid = get_local_id(0);
-  tmp[2 * lid] = inter, tmp[2 * lid + 1] = uni;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint s = get_local_size(0) / 2; s > 0; s >>= 1) {
-    if (lid < s) tmp[2 * lid] += tmp[2 * (lid + s)], tmp[2 * lid + 1] += tmp[2 * (lid + s) + 1];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid == 0) partial[2 * get_group_id(0)] = tmp[0], partial[2 * get_group_id(0) + 1] = tmp[1];
+  reduce_iou_counts(inter, uni, partial, tmp);
 }
 
 // The same counts for CPU devices: runs of 8 voxels along x as float8 lanes,
@@ -199,12 +204,5 @@ __kernel void metrics_iou_lanes(__global const uchar* inside, int4 tdims /* nx, 
       uni += (in_target[l] || in_fluid) ? 1u : 0u;
     }
   }
-  const uint lid = get_local_id(0);
-  tmp[2 * lid] = inter, tmp[2 * lid + 1] = uni;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (uint s = get_local_size(0) / 2; s > 0; s >>= 1) {
-    if (lid < s) tmp[2 * lid] += tmp[2 * (lid + s)], tmp[2 * lid + 1] += tmp[2 * (lid + s) + 1];
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid == 0) partial[2 * get_group_id(0)] = tmp[0], partial[2 * get_group_id(0) + 1] = tmp[1];
+  reduce_iou_counts(inter, uni, partial, tmp);
 }

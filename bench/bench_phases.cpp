@@ -14,7 +14,7 @@
 #include <memory>
 #include <string>
 
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "host/backend_factory.h"
 #ifndef FF_NO_OPENCL
 #include "host/cl_context.h"

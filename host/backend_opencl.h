@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/nonfinite_log.h"
+#include "sim/backend.h"
+#include "sim/nonfinite_log.h"
 #include "ff_rotation.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"

@@ -3,7 +3,7 @@
 #pragma once
 #include <vector>
 
-#include "core/backend.h"
+#include "sim/backend.h"
 #include "host/backend_opencl.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 
 namespace ff {
 

@@ -1,5 +1,5 @@
 // device_grid.h - the uniform neighbour grid on the device, the same grid as
-// src/cpu/uniform_grid.h builds on the host: over the container's box (known
+// src/grid/uniform_grid.h builds on the host: over the container's box (known
 // on the host, so nothing is read back) plus one cell of padding, counting
 // sort by cell (atomic counts, block prefix scan, scatter), made stable by
 // ranking the points of a cell by input index.

@@ -1,6 +1,6 @@
 // grid.cl - phase "grid": the uniform neighbour grid by counting sort
 // (cell count, prefix scan, scatter, rank, reorder), the same
-// grid as src/cpu/uniform_grid.cpp builds. The scatter is made stable by
+// grid as src/grid/uniform_grid.cpp builds. The scatter is made stable by
 // ranking each point among the points of its cell by input index, so the
 // sorted order (and every neighbour sum after it) does not depend on the
 // order in which atomics happen to run.

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "ff_sph.h"
 

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 
 namespace {
 

@@ -23,9 +23,9 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 #include "ff_control.h"
 #include "ff_grid.h"
 #include "host/backend_factory.h"

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "host/backend_factory.h"
 

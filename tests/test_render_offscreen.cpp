@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "render/camera.h"
 #include "render/frame_data.h"

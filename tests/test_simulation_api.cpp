@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <memory>
 
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 #include "ff_rotation.h"
 #include "ff_sph.h"
 #include "metrics/iou.h"

@@ -86,7 +86,7 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
  * def(T, name) for a value type T, and stamped out by FF_GENERIC(def, name):
  * in OpenCL C as name (float) and name_8 (float8); in C++ as the template
  * name<T>, on float and on the OpenMP backend's 8-lane vectors
- * (src/cpu/simd8.h). Vectors evaluate them lane by lane with the same
+ * (src/parallel/simd8.h). Vectors evaluate them lane by lane with the same
  * operations. Such a body uses only + - * /, comparisons combined with & and
  * the selection c ? a : FF_ZERO_OF(T) (for vectors both sides are computed
  * and the unselected lanes dropped, so those must not trap: IEEE floats do not). */

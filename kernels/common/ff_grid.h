@@ -1,5 +1,5 @@
 // ff_grid.h - the uniform neighbour grid's cell arithmetic, as in
-// src/cpu/uniform_grid.h, for the OpenCL kernels (and C++ tests that check it
+// src/grid/uniform_grid.h, for the OpenCL kernels (and C++ tests that check it
 // against UniformGrid). Cell (ix, iy, iz) has index ix + nx * (iy + ny * iz);
 // start[c] .. start[c+1] are the sorted positions of the points in cell c.
 #ifndef FF_GRID_H

@@ -1,5 +1,5 @@
 /* ff_lanes.h - (OpenCL only) 8 particles per work-item, as the OpenMP
- * backend's 8-lane loops (src/cpu/simd8.h): work-item g holds the sorted
+ * backend's 8-lane loops (src/parallel/simd8.h): work-item g holds the sorted
  * positions 8g .. 8g+7 as the lanes of float8 values and walks the neighbours
  * within reach of their bounding box (ff_row_span) one at a time, in
  * ascending order. Each lane adds its own terms in that order; a neighbour out

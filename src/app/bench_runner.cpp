@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "host/backend_factory.h"
 
 namespace ff::app {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "app/bench_cases.h"
-#include "core/backend.h"
+#include "sim/backend.h"
 
 namespace ff::app {
 

@@ -21,7 +21,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "host/backend_factory.h"
 #include "render/camera.h"
 #include "render/frame_data.h"

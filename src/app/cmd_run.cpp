@@ -10,7 +10,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
 #include "io/ply_writer.h"

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
-#include "cpu/parallel_grain.h"
-#include "cpu/simd8.h"
+#include "parallel/parallel_grain.h"
+#include "parallel/simd8.h"
 #include "ff_control.h"
 #include "ff_sph.h"
 

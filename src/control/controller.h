@@ -10,7 +10,7 @@
 
 #include "control/control_set.h"
 #include "core/params.h"
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 #include "ff_rotation.h"
 
 namespace ff {

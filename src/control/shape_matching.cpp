@@ -1,6 +1,6 @@
 #include "control/shape_matching.h"
 
-#include "cpu/parallel_grain.h"
+#include "parallel/parallel_grain.h"
 
 namespace ff {
 

@@ -6,16 +6,9 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
-#include "cpu/parallel_grain.h"
+#include "parallel/parallel_grain.h"
 
 namespace ff {
-
-const char* phaseName(Phase p) {
-  static const char* names[] = {"grid",           "density",   "forces",         "control_scale",
-                                "control_forces", "integrate", "shape_matching", "metrics"};
-  int i = int(p);
-  return i >= 0 && i < int(Phase::Count) ? names[i] : "?";
-}
 
 CpuBackend::CpuBackend(int threads) : threads_(threads), solver_(std::make_unique<WcsphSolver>()) {
   if (threads_ > 0) omp_set_num_threads(threads_);

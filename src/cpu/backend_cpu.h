@@ -3,8 +3,8 @@
 #include <memory>
 
 #include "control/controller.h"
-#include "core/backend.h"
-#include "core/nonfinite_log.h"
+#include "sim/backend.h"
+#include "sim/nonfinite_log.h"
 #include "cpu/fluid_cpu.h"
 #include "cpu/pressure_solver.h"
 #include "metrics/iou.h"

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cpu/simd8.h"
+#include "parallel/simd8.h"
 #include "ff_sph.h"
 
 namespace ff {

@@ -4,7 +4,7 @@
 
 #include "core/fluid_state.h"
 #include "core/params.h"
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 #include "scene/scene.h"
 
 namespace ff {

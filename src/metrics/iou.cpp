@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "cpu/simd8.h"
+#include "parallel/simd8.h"
 #include "ff_sph.h"
 
 namespace ff {

@@ -1,6 +1,6 @@
 // iou.h - voxel intersection over union between the target and the fluid.
 #pragma once
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 #include "ff_rotation.h"
 #include "target/target_shape.h"
 

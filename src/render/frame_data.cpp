@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
-#include "core/simulation.h"
+#include "sim/simulation.h"
 
 namespace ff::render {
 

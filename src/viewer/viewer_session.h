@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "core/simulation.h"
+#include "sim/simulation.h"
 #include "scene/scene.h"
 
 namespace ff::viewer {

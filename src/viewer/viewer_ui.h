@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
+#include "sim/backend.h"
 #include "core/params.h"
 #include "render/camera.h"
 #include "render/frame_data.h"

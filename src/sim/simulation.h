@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "core/backend.h"
+#include "sim/backend.h"
 #include "core/metrics.h"
 #include "scene/scene.h"
 #include "target/target_shape.h"

@@ -1,4 +1,4 @@
-#include "core/simulation.h"
+#include "sim/simulation.h"
 
 #include <algorithm>
 #include <chrono>

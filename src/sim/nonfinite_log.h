@@ -6,7 +6,7 @@
 #pragma once
 #include <cstdint>
 
-#include "core/backend.h"
+#include "sim/backend.h"
 
 namespace ff {
 

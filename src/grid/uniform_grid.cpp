@@ -1,4 +1,4 @@
-#include "cpu/uniform_grid.h"
+#include "grid/uniform_grid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -32,7 +32,7 @@ void write(const fs::path& p, const std::string& text) {
 TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
   fs::path d = tempDir("default");
   Result r = run("run --backend cpu --steps 3 --metrics '" + (d / "m.csv").string() + "' --export '" +
-                 d.string() + "' --export-every 3");
+                 d.string() + "' --export-every 3 --format ply");
   ASSERT_EQ(r.code, 0) << r.out;
   for (const char* phase : {"grid", "density", "forces", "control_scale", "control_forces", "integrate",
                             "shape_matching", "metrics", "total"})

@@ -80,7 +80,15 @@ std::vector<std::string> lines(const std::string& text) {
 
 }  // namespace
 
-TEST(PlyWriter, FluidRoundTrip) {
+static ff::PointCloud plyCloud(size_t n, const float* const* a, const uint32_t* id, double time) {
+  ff::PointCloud c{n, a[0], a[1], a[2], {}, time, "test particles"};
+  c.attributes = {ff::PointAttribute::scalar("vx", a[3]), ff::PointAttribute::scalar("vy", a[4]),
+                  ff::PointAttribute::scalar("vz", a[5]),
+                  ff::PointAttribute::integer("id", reinterpret_cast<const int32_t*>(id))};
+  return c;
+}
+
+TEST(PlyWriter, RoundTripWithIntIdsAndTime) {
   TempDir dir;
   const size_t n = 5;
   std::vector<float> a[6];
@@ -90,17 +98,18 @@ TEST(PlyWriter, FluidRoundTrip) {
       a[c].push_back(float(c) * 1.5f - float(i) * 0.123f + (c == 4 ? 1e-7f : 0.0f));
   for (size_t i = 0; i < n; ++i) id[i] = uint32_t(1000 + 7 * i);
   const std::string path = dir.file("fluid.ply");
-  ff::writeFluidPly(path, n, a[0].data(), a[1].data(), a[2].data(), a[3].data(), a[4].data(), a[5].data(),
-                    id.data());
+  const float* cols[6] = {a[0].data(), a[1].data(), a[2].data(), a[3].data(), a[4].data(), a[5].data()};
+  ff::writePly(path, plyCloud(n, cols, id.data(), 0.25));
 
   Ply ply = readPly(path);
   const std::vector<std::string> expected_props = {
       "property float x",  "property float y",  "property float z", "property float vx",
-      "property float vy", "property float vz", "property uint id"};
+      "property float vy", "property float vz", "property int id"};
   ASSERT_GE(ply.header.size(), 3u);
   EXPECT_EQ(ply.header.front(), "ply");
   EXPECT_EQ(ply.header[1], "format binary_little_endian 1.0");
   EXPECT_EQ(ply.header.back(), "end_header");
+  EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "comment time 0.25"), ply.header.end());
   std::vector<std::string> props;
   bool saw_count = false;
   for (const std::string& l : ply.header) {
@@ -118,43 +127,27 @@ TEST(PlyWriter, FluidRoundTrip) {
   EXPECT_FALSE(fs::exists(path + ".tmp"));
 }
 
-TEST(PlyWriter, FluidNullIdsAreIndices) {
+TEST(PlyWriter, VectorAttributeIsThreeProperties) {
   TempDir dir;
-  float v[3] = {1.0f, 2.0f, 3.0f};
-  const std::string path = dir.file("ids.ply");
-  ff::writeFluidPly(path, 3, v, v, v, v, v, v, nullptr);
-  Ply ply = readPly(path);
-  ASSERT_EQ(ply.body.size(), 3u * 28);
-  for (uint32_t i = 0; i < 3; ++i) EXPECT_EQ(le32(ply.body, i * 28 + 24), i);
-}
-
-TEST(PlyWriter, ControlRoundTrip) {
-  TempDir dir;
-  const size_t n = 4;
-  std::vector<float> a[7];
-  for (int c = 0; c < 7; ++c)
-    for (size_t i = 0; i < n; ++i) a[c].push_back(std::sin(float(c * 10 + i)));
-  const std::string path = dir.file("control.ply");
-  ff::writeControlPly(path, n, a[0].data(), a[1].data(), a[2].data(), a[3].data(), a[4].data(), a[5].data(),
-                      a[6].data());
+  float v[2] = {1.0f, 2.0f};
+  ff::PointCloud c{2, v, v, v, {ff::PointAttribute::vector("rest", v, v, v)}, 0.0, "test"};
+  const std::string path = dir.file("vec.ply");
+  ff::writePly(path, c);
   Ply ply = readPly(path);
   std::vector<std::string> props;
   for (const std::string& l : ply.header)
     if (l.rfind("property ", 0) == 0) props.push_back(l);
-  const std::vector<std::string> expected = {"property float x",  "property float y",  "property float z",
-                                             "property float x0", "property float y0", "property float z0",
-                                             "property float s"};
+  const std::vector<std::string> expected = {"property float x",      "property float y",
+                                             "property float z",      "property float rest_x",
+                                             "property float rest_y", "property float rest_z"};
   EXPECT_EQ(props, expected);
-  EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "element vertex 4"), ply.header.end());
-  ASSERT_EQ(ply.body.size(), n * 28);
-  for (size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 7; ++c) EXPECT_EQ(leFloat(ply.body, i * 28 + 4 * c), a[c][i]);
+  EXPECT_EQ(ply.body.size(), 2u * 24);
 }
 
 TEST(PlyWriter, EmptyCloud) {
   TempDir dir;
   const std::string path = dir.file("empty.ply");
-  ff::writeControlPly(path, 0, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr);
+  ff::writePly(path, ff::PointCloud{});
   Ply ply = readPly(path);
   EXPECT_NE(std::find(ply.header.begin(), ply.header.end(), "element vertex 0"), ply.header.end());
   EXPECT_TRUE(ply.body.empty());
@@ -165,7 +158,7 @@ TEST(PlyWriter, ErrorNamesPathAndLeavesNoFile) {
   const std::string path = dir.file("no_such_folder/out.ply");
   float v[1] = {0.0f};
   try {
-    ff::writeFluidPly(path, 1, v, v, v, v, v, v, nullptr);
+    ff::writePly(path, ff::PointCloud{1, v, v, v, {}, 0.0, "test"});
     ADD_FAILURE() << "no error";
   } catch (const ff::Error& e) {
     std::string msg = e.what();
@@ -180,10 +173,10 @@ TEST(PlyWriter, OverwritesExistingFile) {
   TempDir dir;
   const std::string path = dir.file("again.ply");
   float v[2] = {1.0f, 2.0f};
-  ff::writeFluidPly(path, 2, v, v, v, v, v, v, nullptr);
-  ff::writeFluidPly(path, 1, v, v, v, v, v, v, nullptr);
+  ff::writePly(path, ff::PointCloud{2, v, v, v, {}, 0.0, "test"});
+  ff::writePly(path, ff::PointCloud{1, v, v, v, {}, 0.0, "test"});
   Ply ply = readPly(path);
-  EXPECT_EQ(ply.body.size(), 28u);
+  EXPECT_EQ(ply.body.size(), 12u);
 }
 
 TEST(MetricsCsv, HeaderAndRowsReadBack) {

@@ -4,16 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "app/commands.h"
+#include "app/export_cli.h"
 #include "core/error.h"
-#include "sim/simulation.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
-#include "io/ply_writer.h"
+#include "sim/export_frame.h"
+#include "sim/simulation.h"
 
 namespace ff::app {
 
@@ -27,25 +27,10 @@ struct RunOptions {
   std::string backend = "auto";
   int device = -1;
   std::string metrics;
-  std::string export_dir;
-  int export_every = 0;
+  ExportOptions exports;  // used when exports.dir is set
+  std::string formats = "vtk";
   int print_every = 0;
 };
-
-void exportFrame(Simulation& sim, const std::string& dir, long frame) {
-  FluidState f;
-  sim.backend().readFluid(f);
-  char name[64];
-  std::snprintf(name, sizeof(name), "fluid_%05ld.ply", frame);
-  writeFluidPly(dir + "/" + name, f.size(), f.x.data(), f.y.data(), f.z.data(), f.vx.data(), f.vy.data(),
-                f.vz.data(), f.id.data());
-  ControlSet c;
-  ControlFields cf;
-  sim.backend().readControl(c, cf);
-  std::snprintf(name, sizeof(name), "control_%05ld.ply", frame);
-  writeControlPly(dir + "/" + name, c.size(), c.x.data(), c.y.data(), c.z.data(), c.x0.data(), c.y0.data(),
-                  c.z0.data(), cf.s.data());
-}
 
 int runScene(const RunOptions& o) {
   if (o.threads < 0) throw Error("--threads: must be >= 0");
@@ -57,12 +42,12 @@ int runScene(const RunOptions& o) {
     steps = o.steps;
   else
     steps = long(std::ceil((o.seconds > 0.0 ? o.seconds : scene.duration) / dt - 1e-9));
-  if (!o.export_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.export_dir, ec);
-    if (ec) throw Error(o.export_dir + ": cannot create export folder: " + ec.message());
+  std::unique_ptr<FrameExporter> exporter;
+  if (!o.exports.dir.empty()) {
+    ExportOptions eo = o.exports;
+    eo.formats = parseExportFormats(o.formats, "--format");
+    exporter = std::make_unique<FrameExporter>(eo);
   }
-  const int export_every = o.export_every > 0 ? o.export_every : 1;
 
   std::string note;
   auto backend = makeBackend(o.backend, o.device, o.threads, &note);
@@ -78,15 +63,14 @@ int runScene(const RunOptions& o) {
                          "control_count", "max_density", "substeps"});
   const int print_every = o.print_every > 0 ? o.print_every : std::max(1L, long(std::lround(0.5 / dt)));
   auto t0 = std::chrono::steady_clock::now();
-  long frame = 0;
-  if (!o.export_dir.empty()) exportFrame(sim, o.export_dir, frame++);
+  if (exporter) exportFrameIfDue(sim, *exporter);
   for (long s = 0; s < steps; ++s) {
     sim.step();
     const StepMetrics& m = sim.metrics();
     if (csv.isOpen())
       csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
                double(m.control_count), m.max_density, double(m.substeps)});
-    if (!o.export_dir.empty() && (s + 1) % export_every == 0) exportFrame(sim, o.export_dir, frame++);
+    if (exporter) exportFrameIfDue(sim, *exporter);
     if ((s + 1) % print_every == 0 || s + 1 == steps)
       std::printf("  t=%6.3f s  iou=%.3f  coverage=%.3f  max_speed=%.3f m/s  density_error=%.3f  target=%s\n",
                   m.time, m.iou, m.coverage, m.max_speed, m.density_error,
@@ -102,6 +86,9 @@ int runScene(const RunOptions& o) {
   }
   std::printf("  %-15s %8.3f\n", "total", total / double(std::max(1L, steps)));
   const StepMetrics& m = sim.metrics();
+  if (exporter)
+    std::printf("exported %ld frames (%s) into %s\n", exporter->frames(), o.formats.c_str(),
+                o.exports.dir.c_str());
   std::printf("final: t=%.3f s iou=%.4f coverage=%.4f max_speed=%.4f density_error=%.4f\n", m.time, m.iou,
               m.coverage, m.max_speed, m.density_error);
   return 0;
@@ -124,10 +111,7 @@ std::function<int()> addRunCommand(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
   run->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
   run->add_option("--metrics", o->metrics, "Write per-step metrics to this CSV file");
-  auto* ex = run->add_option("--export", o->export_dir, "Write PLY frames into this folder");
-  run->add_option("--export-every", o->export_every, "Export every K steps (default 1)")
-      ->needs(ex)
-      ->check(CLI::PositiveNumber);
+  addExportOptions(run, o->exports, o->formats, true);
   run->add_option("--print-every", o->print_every, "Print metrics every K steps");
   return [o] { return runScene(*o); };
 }

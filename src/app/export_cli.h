@@ -1,0 +1,16 @@
+// export_cli.h - the command-line options of a frame export (io/frame_exporter.h),
+// shared by `flowform run` and `flowform render`.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "io/export_options.h"
+
+namespace ff::app {
+
+// Adds --export DIR, --format LIST (into `formats`, parsed later with
+// parseExportFormats), --export-every K, --overwrite and, when `with_fps`,
+// --fps (which excludes --export-every).
+void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_fps);
+
+}  // namespace ff::app

@@ -1,5 +1,7 @@
 #include "host/backend_factory.h"
 
+#include <cstdlib>
+
 #include "core/error.h"
 #include "cpu/backend_cpu.h"
 #ifndef FF_NO_OPENCL
@@ -33,6 +35,34 @@ std::string firstLine(const std::string& s) {
 
 }  // namespace
 #endif
+
+namespace {
+
+std::string& chosenKernels() {
+  static std::string choice;  // empty: not set by setKernelChoice
+  return choice;
+}
+
+}  // namespace
+
+bool knownKernels(const std::string& k) {
+  return k == "auto" || k == "scalar" || k == "lanes";
+}
+
+void setKernelChoice(const std::string& name, const std::string& what) {
+  if (!knownKernels(name))
+    throw Error(what + ": unknown kernel variant '" + name + "' (known: auto, scalar, lanes)");
+  chosenKernels() = name;
+}
+
+std::string kernelChoice() {
+  if (!chosenKernels().empty()) return chosenKernels();
+  const char* env = std::getenv("FLOWFORM_KERNELS");
+  const std::string k = env && *env ? env : "auto";
+  if (!knownKernels(k))
+    throw Error("FLOWFORM_KERNELS: unknown kernel variant '" + k + "' (known: auto, scalar, lanes)");
+  return k;
+}
 
 std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note) {
   if (note) note->clear();

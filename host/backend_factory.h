@@ -17,4 +17,13 @@ namespace ff {
 // explanation instead; so does an unknown kind or a --device that cannot be used.
 std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note);
 
+// --kernels: how the OpenCL backend maps particles to work-items. "scalar":
+// one particle per work-item (for GPUs); "lanes": 8 per work-item as float8
+// lanes (for CPU devices); "auto": by the device's type. The results are the
+// same bit for bit. It applies to the OpenCL backends made after the call; the
+// default is $FLOWFORM_KERNELS when set, else "auto". Throws ff::Error naming
+// `what` for an unknown name.
+void setKernelChoice(const std::string& name, const std::string& what = "--kernels");
+std::string kernelChoice();
+
 }  // namespace ff

@@ -1,5 +1,6 @@
 #include "host/backend_opencl.h"
 
+#include "host/backend_factory.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
 
@@ -31,7 +32,10 @@ OpenClBackend::Impl::Impl(int device_index)
 
 OpenClBackend::OpenClBackend(int device_index)
     : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })) {
-  setKernelVariant(KernelVariant::Auto);
+  const std::string k = kernelChoice();
+  setKernelVariant(k == "scalar"  ? KernelVariant::Scalar
+                   : k == "lanes" ? KernelVariant::Lanes
+                                  : KernelVariant::Auto);
 }
 
 void OpenClBackend::setKernelVariant(KernelVariant v) {
@@ -43,7 +47,7 @@ void OpenClBackend::setKernelVariant(KernelVariant v) {
 OpenClBackend::~OpenClBackend() = default;
 
 std::string OpenClBackend::device() const {
-  return "OpenCL: " + d_->ctx.info().summary();
+  return "OpenCL: " + d_->ctx.info().summary() + (lanes_ ? ", lanes kernels" : ", scalar kernels");
 }
 
 const ClDeviceInfo& OpenClBackend::deviceInfo() const {
@@ -76,6 +80,12 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
     for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) b->ensure(c, padded8(n_) * sizeof(float));
     fillBuffer(q, d.rho, params.fluid.rest_density, n_);
     for (DeviceBuffer* b : {&d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, n_);
+    // The padding past n: no kernel writes it, the 8-wide loads read it
+    // (masked, but 0 x NaN is NaN), so it is zeroed here, after every resize.
+    for (int k = 0; k < 2; ++k)
+      for (DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k]})
+        fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
+    for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
     setParams(params);
     grid_state_ = GridState::Stale;
     q.finish();

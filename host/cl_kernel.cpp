@@ -1,6 +1,10 @@
 #include "host/cl_kernel.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <vector>
 
 namespace ff {
 
@@ -37,10 +41,22 @@ void enqueueKernel(cl::CommandQueue& q, ClKernel& k, size_t global, size_t local
   }
 }
 
+bool clPoisonEnabled() {
+  const char* v = std::getenv("FLOWFORM_CL_POISON");
+  return v && std::strcmp(v, "1") == 0;
+}
+
 void DeviceBuffer::ensure(const cl::Context& ctx, size_t bytes) {
   bytes = std::max<size_t>(bytes, 16);
   if (bytes <= bytes_) return;
-  buf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, bytes);
+  if (clPoisonEnabled()) {
+    // Quiet NaNs in every word, as a GPU's uninitialised memory may hold anything.
+    std::vector<float> nan((bytes + sizeof(float) - 1) / sizeof(float),
+                           std::numeric_limits<float>::quiet_NaN());
+    buf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, nan.data());
+  } else {
+    buf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, bytes);
+  }
   bytes_ = bytes;
 }
 

@@ -56,8 +56,14 @@ void launchGroups(cl::CommandQueue& q, ClKernel& k, size_t groups, size_t local,
   enqueueKernel(q, k, groups * local, local);
 }
 
+// FLOWFORM_CL_POISON=1: every new device buffer starts filled with NaN (as a
+// GPU's uninitialised memory may), so that a kernel reading a value that was
+// never written shows up on PoCL, which zeroes new memory.
+bool clPoisonEnabled();
+
 // A device buffer that only grows; zero-sized requests allocate one element
-// (OpenCL has no empty buffers).
+// (OpenCL has no empty buffers). Its contents start undefined (NaN under
+// FLOWFORM_CL_POISON=1), and are lost when it grows.
 class DeviceBuffer {
  public:
   void ensure(const cl::Context& ctx, size_t bytes);

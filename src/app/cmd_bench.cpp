@@ -14,6 +14,7 @@
 #include "app/bench_report.h"
 #include "app/bench_runner.h"
 #include "app/commands.h"
+#include "app/kernels_option.h"
 #include "core/error.h"
 #ifndef FF_NO_OPENCL
 #include "host/cl_context.h"
@@ -192,6 +193,7 @@ std::function<int()> addBenchCommand(CLI::App& app) {
   cmd->add_option("--backend", o->backend,
                   "all (default), cpu or opencl (every OpenCL device unless --device)");
   cmd->add_option("--device", o->device, "OpenCL device index (see `flowform devices`)");
+  addKernelsOption(cmd);
   cmd->add_option("--threads", o->threads, "OpenMP threads (default: OpenMP's default)");
   cmd->add_option("--steps", o->steps, "Timed steps per Table 1 case (default 200)");
   cmd->add_option("--warmup", o->warmup, "Untimed steps before (default 50)");

@@ -4,8 +4,10 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/kernels_option.h"
 #include "core/error.h"
 #ifndef FF_NO_OPENCL
+#include "host/backend_factory.h"
 #include "host/cl_context.h"
 #endif
 
@@ -53,6 +55,11 @@ int listDevices() {
         "%s\n",
         unsigned(d.compute_units), d.max_work_group, mib(d.global_mem).c_str(), mib(d.max_alloc).c_str(),
         mib(d.local_mem).c_str());
+    // The variant OpenClBackend picks for this device (setKernelVariant).
+    const std::string k = kernelChoice();
+    const bool lanes = k == "lanes" || (k == "auto" && (d.type & CL_DEVICE_TYPE_CPU) != 0);
+    std::printf("    kernels %s (%s)\n", lanes ? "lanes" : "scalar",
+                k == "auto" ? "auto: by device type" : "set by --kernels / FLOWFORM_KERNELS");
   }
   if (devices.empty()) std::printf("OpenCL platforms found, but no devices.\n");
   return 0;
@@ -62,7 +69,9 @@ int listDevices() {
 }  // namespace
 
 std::function<int()> addDevicesCommand(CLI::App& app) {
-  app.add_subcommand("devices", "List the OpenCL platforms and devices (numbers for `run --device N`)");
+  CLI::App* cmd =
+      app.add_subcommand("devices", "List the OpenCL platforms and devices (numbers for `run --device N`)");
+  addKernelsOption(cmd);
   return [] { return listDevices(); };
 }
 

@@ -20,13 +20,14 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/kernels_option.h"
 #include "core/error.h"
-#include "sim/simulation.h"
 #include "host/backend_factory.h"
 #include "render/camera.h"
 #include "render/frame_data.h"
 #include "render/offscreen_context.h"
 #include "render/scene_renderer.h"
+#include "sim/simulation.h"
 
 extern char** environ;
 
@@ -327,6 +328,7 @@ std::function<int()> addRenderCommand(CLI::App& app) {
                   "auto (an OpenCL GPU if there is one, else the CPU), cpu or opencl")
       ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
   cmd->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
+  addKernelsOption(cmd);
   cmd->add_option("--mode", o->mode, "fluid (screen-space liquid surface) or particles (plain spheres)")
       ->capture_default_str();
   cmd->add_flag("--control", o->control,

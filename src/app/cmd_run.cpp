@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/export_cli.h"
+#include "app/kernels_option.h"
 #include "core/error.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
@@ -110,6 +111,7 @@ std::function<int()> addRunCommand(CLI::App& app) {
                   "auto (an OpenCL GPU if there is one, else the CPU), cpu or opencl")
       ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
   run->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
+  addKernelsOption(run);
   run->add_option("--metrics", o->metrics, "Write per-step metrics to this CSV file");
   addExportOptions(run, o->exports, o->formats, true);
   run->add_option("--print-every", o->print_every, "Print metrics every K steps");

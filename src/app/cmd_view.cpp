@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/kernels_option.h"
 #include "core/error.h"
 #include "viewer/viewer.h"
 
@@ -35,6 +36,7 @@ std::function<int()> addViewCommand(CLI::App& app) {
                    "auto (an OpenCL GPU if there is one, else the CPU), cpu or opencl")
       ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
   view->add_option("--device", o->viewer.device, "OpenCL device number, as `flowform devices` lists them");
+  addKernelsOption(view);
   view->add_option("--threads", o->viewer.threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   view->add_option("--script", o->viewer.script,

@@ -82,3 +82,35 @@ TEST(ExportOptions, FpsRange) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ExportOptions, SurfaceRanges) {
+  ff::ExportOptions o;
+  o.dir = "x";
+  o.surface.enabled = true;
+  EXPECT_NO_THROW(ff::validateExportOptions(o, "export"));
+  auto expectError = [&](const char* field) {
+    try {
+      ff::validateExportOptions(o, "export");
+      ADD_FAILURE() << "accepted bad " << field;
+    } catch (const ff::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+    o.surface = ff::SurfaceOptions();
+    o.surface.enabled = true;
+  };
+  o.surface.radius = 0.5f;  // leaves gaps in the rest lattice
+  expectError("radius");
+  o.surface.radius = std::nanf("");
+  expectError("radius");
+  o.surface.voxel = 0.0f;
+  expectError("voxel");
+  o.surface.smoothing = -1;
+  expectError("smoothing");
+  o.surface.radius = 0.8f;
+  o.surface.voxel = 0.6f;  // under 1.5 voxels per radius
+  expectError("radius");
+}
+
+}  // namespace

@@ -88,8 +88,9 @@ int runScene(const RunOptions& o) {
   std::printf("  %-15s %8.3f\n", "total", total / double(std::max(1L, steps)));
   const StepMetrics& m = sim.metrics();
   if (exporter)
-    std::printf("exported %ld frames (%s) into %s\n", exporter->frames(), o.formats.c_str(),
-                o.exports.dir.c_str());
+    std::printf("exported %ld frames (%s%s) into %s: %s\n", exporter->frames(), o.formats.c_str(),
+                o.exports.surface.enabled ? ", surface" : "", o.exports.dir.c_str(),
+                exporter->costReport().c_str());
   std::printf("final: t=%.3f s iou=%.4f coverage=%.4f max_speed=%.4f density_error=%.4f\n", m.time, m.iou,
               m.coverage, m.max_speed, m.density_error);
   return 0;

@@ -10,7 +10,9 @@ namespace ff::app {
 
 // Adds --export DIR, --format LIST (into `formats`, parsed later with
 // parseExportFormats), --export-every K, --overwrite and, when `with_fps`,
-// --fps (which excludes --export-every).
+// --fps (which excludes --export-every); and the surface options --surface,
+// --surface-format, --surface-radius, --surface-voxel, --surface-smoothing,
+// --surface-vdb.
 void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_fps);
 
 }  // namespace ff::app

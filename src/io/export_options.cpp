@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "surface/particle_surface.h"
 
 namespace ff {
 
@@ -49,6 +50,7 @@ void validateExportOptions(const ExportOptions& o, const std::string& what) {
     throw Error(what + ": fps must be in (0, 10000], got " + std::to_string(o.fps));
   if (o.every_steps < 0) throw Error(what + ": every_steps must be >= 0");
   if (o.formats.empty()) throw Error(what + ": no export format");
+  if (o.surface.enabled) validateSurfaceOptions(o.surface, what + ": surface ");
 }
 
 }  // namespace ff

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "surface/surface_options.h"
+
 namespace ff {
 
 enum class ExportFormat { Vtk, Bgeo, Ply };
@@ -15,6 +17,7 @@ struct ExportOptions {
   long every_steps = 0;  // > 0: a frame every K steps instead (old --export-every)
   std::vector<ExportFormat> formats{ExportFormat::Vtk};  // at least one, each once
   bool overwrite = false;  // remove another run's frames first (io/export_folder.h)
+  SurfaceOptions surface;  // surface meshes (and level sets), when enabled
 };
 
 // "vtk,bgeo,ply" (any order, comma-separated, each at most once) to formats.

@@ -1,12 +1,16 @@
 // frame_exporter.cpp - frames at a frame rate, in the chosen formats.
 #include "io/frame_exporter.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include "io/bgeo_writer.h"
 #include "io/export_folder.h"
 #include "io/ply_writer.h"
+#include "io/surface_mesh_writer.h"
 #include "io/vtu_writer.h"
+#include "surface/particle_surface.h"
 
 namespace ff {
 namespace {
@@ -110,6 +114,16 @@ bool FrameExporter::due(double time, long step) const {
 void FrameExporter::write(const ParticleFrame& fr) {
   if (frames_ == 0) start_time_ = fr.time;
   last_step_ = fr.step;
+  auto t0 = std::chrono::steady_clock::now();
+  // Adds the time since t0 to `part` and restarts the clock.
+  auto lap = [&](const char* part) {
+    const auto t1 = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    t0 = t1;
+    for (auto& [name, total] : ms_)
+      if (name == part) return void(total += ms);
+    ms_.emplace_back(part, ms);
+  };
   for (ExportFormat f : options_.formats) {
     const std::string fluid = framePath("fluid", frames_, extension(f));
     const std::string control = framePath("control", frames_, extension(f));
@@ -119,8 +133,31 @@ void FrameExporter::write(const ParticleFrame& fr) {
       fluid_pvd_->add(fr.time, fluid.substr(options_.dir.size() + 1));
       control_pvd_->add(fr.time, control.substr(options_.dir.size() + 1));
     }
+    lap(formatName(f));
+  }
+  const SurfaceOptions& so = options_.surface;
+  if (so.enabled) {
+    const FluidState& f = fr.fluid;
+    const SurfaceMesh mesh = particleSurface(f.size(), f.x.data(), f.y.data(), f.z.data(), fr.spacing, so,
+                                             so.vdb ? framePath("surface", frames_, "vdb") : "", fr.time);
+    if (so.format == SurfaceMeshFormat::Obj)
+      writeSurfaceObj(framePath("surface", frames_, "obj"), mesh, fr.time);
+    else
+      writeSurfacePly(framePath("surface", frames_, "ply"), mesh, fr.time);
+    lap("surface");
   }
   ++frames_;
+}
+
+std::string FrameExporter::costReport() const {
+  std::string out;
+  char part[96];
+  for (const auto& [name, total] : ms_) {
+    std::snprintf(part, sizeof part, "%s%s %.2f", out.empty() ? "" : ", ", name.c_str(),
+                  total / double(std::max(1L, frames_)));
+    out += part;
+  }
+  return out.empty() ? out : out + " ms per frame";
 }
 
 }  // namespace ff

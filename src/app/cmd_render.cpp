@@ -21,6 +21,7 @@
 
 #include "app/commands.h"
 #include "app/kernels_option.h"
+#include "app/progress.h"
 #include "core/error.h"
 #include "host/backend_factory.h"
 #include "render/camera.h"
@@ -140,16 +141,6 @@ void makeVideo(const std::string& ffmpeg, const std::string& dir, double fps, co
   }
 }
 
-std::string clockText(double seconds) {
-  const long s = long(std::lround(std::max(seconds, 0.0)));
-  char buf[32];
-  if (s >= 3600)
-    std::snprintf(buf, sizeof(buf), "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
-  else
-    std::snprintf(buf, sizeof(buf), "%ld:%02ld", s / 60, s % 60);
-  return buf;
-}
-
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
@@ -229,9 +220,16 @@ int renderScene(const RenderCmdOptions& o) {
       sim.backend().device().c_str(), o.frames, o.width, o.height, every, double(every) * dt,
       double(start_steps) * dt, context.renderer().c_str());
 
+  // One progress line over every step: the lead-in to --start, then the frames.
+  Progress progress("  render", start_steps + (o.frames - 1) * every, dt, sim.time());
+  long steps_done = 0;
   if (start_steps > 0) {
     const auto t = std::chrono::steady_clock::now();
-    for (long s = 0; s < start_steps; ++s) sim.step();
+    for (long s = 0; s < start_steps; ++s) {
+      sim.step();
+      progress.update(++steps_done, sim.time());
+    }
+    progress.interrupt();
     std::printf("  simulated to t = %.3f s before the first frame (%.1f s)\n", sim.time(),
                 msSince(t) / 1000.0);
   }
@@ -244,7 +242,10 @@ int renderScene(const RenderCmdOptions& o) {
     const auto t_frame = std::chrono::steady_clock::now();
     double sim_ms = 0.0;
     if (f > 0) {
-      for (long s = 0; s < every; ++s) sim.step();
+      for (long s = 0; s < every; ++s) {
+        sim.step();
+        progress.update(++steps_done, sim.time());
+      }
       sim_ms = msSince(t_frame);
       sim_total += sim_ms;
       ++sim_frames;
@@ -268,10 +269,12 @@ int renderScene(const RenderCmdOptions& o) {
     write_total += write_ms;
     const double elapsed = msSince(t_all) / 1000.0;
     const double eta = elapsed / double(f + 1) * double(o.frames - f - 1);
+    progress.interrupt();
     std::printf("  frame %ld/%ld  t=%.3f s  sim %.1f ms  render %.1f ms (+%.1f ms read+PNG)  ETA %s\n", f + 1,
                 o.frames, sim.time(), sim_ms, draw_ms, write_ms, clockText(eta).c_str());
   }
 
+  progress.finish(steps_done, sim.time());
   std::printf("summary: %ld frame(s) of %dx%d in %.1f s, %zu fluid particles\n", o.frames, o.width, o.height,
               msSince(t_all) / 1000.0, size_t(scene.fluidCount()));
   if (sim_frames > 0)

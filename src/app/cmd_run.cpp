@@ -10,6 +10,7 @@
 #include "app/commands.h"
 #include "app/export_cli.h"
 #include "app/kernels_option.h"
+#include "app/progress.h"
 #include "core/error.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
@@ -65,18 +66,23 @@ int runScene(const RunOptions& o) {
   const int print_every = o.print_every > 0 ? o.print_every : std::max(1L, long(std::lround(0.5 / dt)));
   auto t0 = std::chrono::steady_clock::now();
   if (exporter) exportFrameIfDue(sim, *exporter);
+  Progress progress("  run", steps, dt, sim.time());
   for (long s = 0; s < steps; ++s) {
     sim.step();
     const StepMetrics& m = sim.metrics();
+    progress.update(s + 1, m.time);
     if (csv.isOpen())
       csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
                double(m.control_count), m.max_density, double(m.substeps)});
     if (exporter) exportFrameIfDue(sim, *exporter);
-    if ((s + 1) % print_every == 0 || s + 1 == steps)
+    if ((s + 1) % print_every == 0 || s + 1 == steps) {
+      progress.interrupt();
       std::printf("  t=%6.3f s  iou=%.3f  coverage=%.3f  max_speed=%.3f m/s  density_error=%.3f  target=%s\n",
                   m.time, m.iou, m.coverage, m.max_speed, m.density_error,
                   sim.target() ? sim.target()->label.c_str() : "none");
+    }
   }
+  progress.finish(steps, sim.time());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto& ms = sim.phaseMs();
   double total = 0.0;

@@ -27,6 +27,12 @@ void passiveOpenMpForGraphics(int argc, char** argv) {
   ::execv("/proc/self/exe", argv);
 }
 
+bool isCommand(const CLI::App& app, const std::string& name) {
+  for (const CLI::App* sub : app.get_subcommands({}))
+    if (sub->check_name(name)) return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -40,10 +46,25 @@ int main(int argc, char** argv) {
   auto view = ff::app::addViewCommand(app);
   auto render = ff::app::addRenderCommand(app);
   auto bench = ff::app::addBenchCommand(app);
+  // A bare `flowform` shows what it can do.
+  if (argc < 2) {
+    std::printf("%s", app.help().c_str());
+    return 0;
+  }
+  // A word that is not a command: one line, exit code 2 (a usage error).
+  const std::string first = argv[1];
+  if (!first.empty() && first[0] != '-' && !isCommand(app, first)) {
+    std::fprintf(
+        stderr,
+        "flowform: unknown command '%s' (commands: run, devices, view, render, bench; see flowform --help)\n",
+        first.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help prints the help and exits 0; every other usage error exits 2.
+    return app.exit(e) == 0 ? 0 : 2;
   }
   try {
     for (CLI::App* sub : app.get_subcommands()) {
@@ -53,8 +74,9 @@ int main(int argc, char** argv) {
       if (sub->get_name() == "render") return render();
       if (sub->get_name() == "bench") return bench();
     }
-    // No subcommand: run the default scene.
-    return run();
+    // Only options (e.g. --help handled above): show the usage.
+    std::printf("%s", app.help().c_str());
+    return 0;
   } catch (const ff::Error& e) {
     std::fprintf(stderr, "flowform: error: %s\n", e.what());
     return 1;

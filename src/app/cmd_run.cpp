@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -11,9 +12,11 @@
 #include "app/export_cli.h"
 #include "app/kernels_option.h"
 #include "app/progress.h"
+#include "app/run_checkpoints.h"
 #include "core/error.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
+#include "sim/checkpoint.h"
 #include "sim/export_frame.h"
 #include "sim/simulation.h"
 
@@ -32,18 +35,36 @@ struct RunOptions {
   ExportOptions exports;  // used when exports.dir is set
   std::string formats = "vtk";
   int print_every = 0;
+  double checkpoint_every = 0.0;
+  std::string checkpoint_dir = "checkpoints";
+  std::string resume;
 };
 
 int runScene(const RunOptions& o) {
   if (o.threads < 0) throw Error("--threads: must be >= 0");
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  SceneDesc scene = o.scene.empty() ? defaultScene() : loadScene(o.scene);
-  long steps = 0;
+  if (!o.resume.empty() && !o.scene.empty())
+    throw Error("--resume: give a scene or a checkpoint, not both (the checkpoint holds its scene)");
+  std::string note;
+  auto backend = makeBackend(o.backend, o.device, o.threads, &note);
+  if (!note.empty()) std::printf("flowform: %s\n", note.c_str());
+  std::unique_ptr<Simulation> simp =
+      o.resume.empty() ? std::make_unique<Simulation>(o.scene.empty() ? defaultScene() : loadScene(o.scene),
+                                                      std::move(backend))
+                       : loadCheckpoint(o.resume, std::move(backend));
+  Simulation& sim = *simp;
+  const SceneDesc& scene = sim.scene();
+  // --seconds and --steps count from the start of the run, also when resuming.
   const double dt = scene.params.fluid.time_step;
-  if (o.steps > 0)
-    steps = o.steps;
-  else
-    steps = long(std::ceil((o.seconds > 0.0 ? o.seconds : scene.duration) / dt - 1e-9));
+  const long end =
+      o.steps > 0 ? o.steps : long(std::ceil((o.seconds > 0.0 ? o.seconds : scene.duration) / dt - 1e-9));
+  const long first = sim.stepCount();
+  const long steps = end - first;
+  if (steps <= 0)
+    throw Error("--resume " + o.resume + ": the checkpoint is at step " + std::to_string(first) +
+                " (t = " + std::to_string(sim.time()) + " s), at or past the end of the run (step " +
+                std::to_string(end) + "); ask for more with --seconds or --steps");
+  // A resumed run's export starts at its first step, numbered from 0.
   std::unique_ptr<FrameExporter> exporter;
   if (!o.exports.dir.empty()) {
     ExportOptions eo = o.exports;
@@ -51,35 +72,54 @@ int runScene(const RunOptions& o) {
     exporter = std::make_unique<FrameExporter>(eo);
   }
 
-  std::string note;
-  auto backend = makeBackend(o.backend, o.device, o.threads, &note);
-  if (!note.empty()) std::printf("flowform: %s\n", note.c_str());
-  Simulation sim(scene, std::move(backend));
+  if (!o.resume.empty())
+    std::printf("flowform: resuming %s at step %ld (t = %.3f s)\n", o.resume.c_str(), first, sim.time());
   std::printf("flowform: scene '%s' (%s), %zu fluid particles, backend %s (%s), %ld steps of %.4g s\n",
               scene.name.c_str(), scene.source.c_str(), size_t(scene.fluidCount()),
               sim.backend().name().c_str(), sim.backend().device().c_str(), steps, dt);
 
   MetricsCsv csv;
-  if (!o.metrics.empty())
-    csv.open(o.metrics, {"step", "time", "iou", "coverage", "max_speed", "density_error", "kinetic_energy",
-                         "control_count", "max_density", "substeps"});
+  const std::vector<std::string> columns = {
+      "step",          "time",           "iou",           "coverage",    "max_speed",
+      "density_error", "kinetic_energy", "control_count", "max_density", "substeps"};
+  if (!o.metrics.empty() && first > 0)
+    csv.resume(o.metrics, columns, double(first));
+  else if (!o.metrics.empty())
+    csv.open(o.metrics, columns);
   const int print_every = o.print_every > 0 ? o.print_every : std::max(1L, long(std::lround(0.5 / dt)));
   auto t0 = std::chrono::steady_clock::now();
   if (exporter) exportFrameIfDue(sim, *exporter);
   Progress progress("  run", steps, dt, sim.time());
-  for (long s = 0; s < steps; ++s) {
+  Checkpoints checkpoints(o.checkpoint_dir, o.checkpoint_every, sim.time());
+  StopSignals stop;
+  for (long s = first; s < end; ++s) {
     sim.step();
     const StepMetrics& m = sim.metrics();
-    progress.update(s + 1, m.time);
+    progress.update(s + 1 - first, m.time);
     if (csv.isOpen())
       csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
                double(m.control_count), m.max_density, double(m.substeps)});
     if (exporter) exportFrameIfDue(sim, *exporter);
-    if ((s + 1) % print_every == 0 || s + 1 == steps) {
+    if ((s + 1) % print_every == 0 || s + 1 == end) {
       progress.interrupt();
       std::printf("  t=%6.3f s  iou=%.3f  coverage=%.3f  max_speed=%.3f m/s  density_error=%.3f  target=%s\n",
                   m.time, m.iou, m.coverage, m.max_speed, m.density_error,
                   sim.target() ? sim.target()->label.c_str() : "none");
+    }
+    const std::string saved = checkpoints.due(sim);
+    if (!saved.empty()) {
+      progress.interrupt();
+      std::printf("  checkpoint %s (t = %.3f s)\n", saved.c_str(), sim.time());
+    }
+    if (stop.caught() && s + 1 < end) {
+      const std::string last = saved.empty() ? checkpoints.write(sim) : saved;
+      progress.interrupt();
+      std::printf(
+          "flowform: stopped by %s at step %ld (t = %.3f s); checkpoint %s\n"
+          "  resume with: flowform run --resume %s\n",
+          stop.caught() == SIGINT ? "SIGINT" : "SIGTERM", sim.stepCount(), sim.time(), last.c_str(),
+          last.c_str());
+      return 128 + stop.caught();
     }
   }
   progress.finish(steps, sim.time());
@@ -122,6 +162,12 @@ std::function<int()> addRunCommand(CLI::App& app) {
   run->add_option("--metrics", o->metrics, "Write per-step metrics to this CSV file");
   addExportOptions(run, o->exports, o->formats, true);
   run->add_option("--print-every", o->print_every, "Print metrics every K steps");
+  run->add_option("--checkpoint-every", o->checkpoint_every, "Write a checkpoint every T simulated seconds")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--checkpoint", o->checkpoint_dir,
+                  "Folder for checkpoints (default: checkpoints); SIGINT/SIGTERM also write one there");
+  run->add_option("--resume", o->resume,
+                  "Continue the run saved in this checkpoint (--seconds/--steps count from its start)");
   return [o] { return runScene(*o); };
 }
 

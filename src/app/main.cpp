@@ -13,16 +13,20 @@
 
 namespace {
 
-// `view` and `render` share the CPU with OpenGL (llvmpipe renders on the CPU
-// where there is no GPU). OpenMP threads that spin-wait between phases then
-// starve the renderer's threads (a 6 s script took 16 s), so these two
-// commands run with OMP_WAIT_POLICY=PASSIVE unless the user chose a policy.
+// Every command that simulates runs with OMP_WAIT_POLICY=PASSIVE unless the
+// user chose a policy:
+// - `view` and `render` share the CPU with OpenGL (llvmpipe renders on the CPU
+//   where there is no GPU); threads that spin-wait between phases starve the
+//   renderer's threads (a 6 s script took 16 s).
+// - `run` and `bench`: on a quiet machine the policies are equally fast; on a
+//   loaded one (a second busy process) the passive wait is 25-35 % faster
+//   (docs/PERFORMANCE.md, "OpenMP wait policy").
 // The OpenMP runtime reads the variable when it loads, so the program
 // restarts itself once with it set; if that fails it just goes on.
-void passiveOpenMpForGraphics(int argc, char** argv) {
+void passiveOpenMp(int argc, char** argv) {
   if (argc < 2 || std::getenv("OMP_WAIT_POLICY")) return;
   const std::string sub = argv[1];
-  if (sub != "view" && sub != "render") return;
+  if (sub != "view" && sub != "render" && sub != "run" && sub != "bench") return;
   if (::setenv("OMP_WAIT_POLICY", "PASSIVE", 0) != 0) return;
   ::execv("/proc/self/exe", argv);
 }
@@ -36,7 +40,7 @@ bool isCommand(const CLI::App& app, const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  passiveOpenMpForGraphics(argc, argv);
+  passiveOpenMp(argc, argv);
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they happen, also in logs
   CLI::App app{
       "flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};

@@ -10,8 +10,9 @@
 
 #include "control/control_set.h"
 #include "core/params.h"
-#include "grid/uniform_grid.h"
+#include "core/state_io.h"
 #include "ff_rotation.h"
+#include "grid/uniform_grid.h"
 
 namespace ff {
 
@@ -64,6 +65,11 @@ class Controller {
 
   // All three phases for one fluid step; for embedding in another solver.
   void step(const FluidView& f, float dt, float* ax, float* ay, float* az);
+
+  // Checkpoints: the control particles, their fields, the cluster rotations
+  // (warm starts) and the shape-matching clock.
+  void saveState(StateWriter& w) const;
+  void loadState(StateReader& r);
 
   const ControlSet& set() const { return set_; }
   const ControlFields& fields() const { return fields_; }

@@ -33,6 +33,9 @@ class CpuBackend : public Backend {
   Phase firstNonFinite(int* substep = nullptr) override;
   size_t memoryBytes() const override;
 
+  void saveState(StateWriter& w) const override;
+  void loadState(StateReader& r) override;
+
   void readFluid(FluidState& out) override { out = fluid_.s; }
   void readDensity(std::vector<float>& rho, std::vector<float>& p) override {
     rho = fluid_.rho, p = fluid_.p;

@@ -2,7 +2,9 @@
 #include "io/metrics_csv.h"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -35,6 +37,35 @@ void MetricsCsv::open(const std::string& path, const std::vector<std::string>& c
   for (size_t i = 0; i < columns.size(); ++i) line += (i ? "," : "") + cell(columns[i]);
   line += "\n";
   if (std::fputs(line.c_str(), file_) < 0 || std::fflush(file_) != 0)
+    throw Error(path_ + ": cannot write metrics CSV (" + std::strerror(errno) + ")");
+}
+
+void MetricsCsv::resume(const std::string& path, const std::vector<std::string>& columns, double last_step) {
+  std::string header;
+  for (size_t i = 0; i < columns.size(); ++i) header += (i ? "," : "") + cell(columns[i]);
+  std::vector<std::string> keep;
+  {
+    std::ifstream in(path);
+    std::string line;
+    if (!in || !std::getline(in, line) || line != header) return open(path, columns);
+    keep.push_back(line);
+    while (std::getline(in, line) && !in.eof()) {  // the last line must end with '\n'
+      char* end = nullptr;
+      const double step = std::strtod(line.c_str(), &end);
+      if (end == line.c_str() || step > last_step) break;
+      keep.push_back(line);
+    }
+  }
+  close();
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) throw Error(path + ": cannot write metrics CSV (" + std::strerror(errno) + ")");
+  file_ = f;
+  path_ = path;
+  columns_ = columns.size();
+  for (const std::string& line : keep)
+    if (std::fputs((line + "\n").c_str(), file_) < 0)
+      throw Error(path_ + ": cannot write metrics CSV (" + std::strerror(errno) + ")");
+  if (std::fflush(file_) != 0)
     throw Error(path_ + ": cannot write metrics CSV (" + std::strerror(errno) + ")");
 }
 

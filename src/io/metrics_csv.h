@@ -18,6 +18,11 @@ class MetricsCsv {
   // Creates (truncates) `path` and writes the header. Throws ff::Error naming
   // the path if it cannot. Closes any file opened before.
   void open(const std::string& path, const std::vector<std::string>& columns);
+  // Continues the log of a resumed run: if `path` holds a log with the same
+  // columns, keeps its header and the rows up to step `last_step` (the first
+  // column), drops later ones (a run killed after its last checkpoint) and
+  // appends from there; otherwise like open().
+  void resume(const std::string& path, const std::vector<std::string>& columns, double last_step);
   // One row, values printed with %.9g; there must be one value per column.
   void row(const std::vector<double>& values);
   template <class... T, class = std::enable_if_t<(std::is_arithmetic_v<T> && ...)>>

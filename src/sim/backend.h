@@ -10,6 +10,7 @@
 #include "core/fluid_state.h"
 #include "core/metrics.h"
 #include "core/params.h"
+#include "core/state_io.h"
 #include "scene/scene.h"
 
 namespace ff {
@@ -67,6 +68,15 @@ class Backend {
   // and metrics buffer (capacity, on the host for the OpenMP backend, on the
   // device for OpenCL), not code or the OpenCL runtime's own memory.
   virtual size_t memoryBytes() const = 0;
+
+  // Checkpoints: everything of the backend that a step depends on and that
+  // init() and the scene do not give again (particles in their current order,
+  // control particles, the shape-matching clock, warm starts such as cluster
+  // rotations, and a pressure solver's per-particle state). loadState() comes
+  // after init() with the same scene and restores the state bit for bit. The
+  // default refuses with a clear ff::Error (a backend that cannot yet).
+  virtual void saveState(StateWriter& w) const;
+  virtual void loadState(StateReader& r);
 
   // Copies of the state, in the backend's current (cell-sorted) order.
   virtual void readFluid(FluidState& out) = 0;

@@ -10,14 +10,50 @@
 #include "control/placement.h"
 #include "control/shape_matching.h"
 #include "core/error.h"
+#include "scene/scene_state.h"
 
 namespace ff {
+
+namespace {
+// The voxel size of a target that asks for neither a size nor a count.
+float defaultVoxelSize(const FluidParams& fp) {
+  return 1.55f * fp.restSpacing();
+}
+}  // namespace
 
 Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend)
     : scene_(std::move(scene)), backend_(std::move(backend)) {
   validateParams(scene_.params, scene_.source);
   backend_->init(scene_.params, scene_.container, makeFluid(scene_));
   applySchedule();
+}
+
+Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateReader& r)
+    : scene_(std::move(scene)), backend_(std::move(backend)) {
+  validateParams(scene_.params, r.source());
+  backend_->init(scene_.params, scene_.container, makeFluid(scene_));
+  r.tag("SIMU");
+  r.pod(step_), r.pod(time_), r.pod(metrics_);
+  const uint64_t next = r.pod<uint64_t>();
+  r.check(next <= scene_.schedule.size(), "the schedule position is past the schedule's end");
+  next_schedule_ = size_t(next);
+  r.pod(has_target_), r.pod(controlled_), r.pod(target_volume_);
+  if (has_target_) {
+    target_spec_ = readTargetState(r);
+    target_ = &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid));
+  }
+  backend_->loadState(r);
+  backend_->setMetricsTarget(target_);
+  r.check(r.atEnd(), "there are bytes after the end of the state");
+}
+
+void Simulation::saveState(StateWriter& w) const {
+  w.tag("SIMU");
+  w.pod(step_), w.pod(time_), w.pod(metrics_);
+  w.pod(uint64_t(next_schedule_));
+  w.pod(has_target_), w.pod(controlled_), w.pod(target_volume_);
+  if (has_target_) writeTargetState(w, target_spec_);
+  backend_->saveState(w);
 }
 
 FluidState Simulation::makeFluid(const SceneDesc& scene) {
@@ -172,8 +208,8 @@ void Simulation::setTarget(const TargetSpec& spec) {
   range(pz, lo.z(), hi.z());
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
-  const float default_voxel = 1.55f * fp.restSpacing();
-  target_ = &cache_.get(spec, volume, default_voxel);
+  target_ = &cache_.get(spec, volume, defaultVoxelSize(fp));
+  target_volume_ = volume;
   target_spec_ = spec;
   has_target_ = true;
   controlled_ = count;

@@ -5,9 +5,10 @@
 #include <memory>
 #include <string>
 
-#include "sim/backend.h"
 #include "core/metrics.h"
+#include "core/state_io.h"
 #include "scene/scene.h"
+#include "sim/backend.h"
 #include "target/target_shape.h"
 
 namespace ff {
@@ -15,6 +16,14 @@ namespace ff {
 class Simulation {
  public:
   Simulation(SceneDesc scene, std::unique_ptr<Backend> backend);
+
+  // Resumes a saved run: `scene` as saved (readSceneState), then the rest of
+  // the state that saveState() wrote. Throws ff::Error naming r.source().
+  Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateReader& r);
+  // Everything a step depends on beyond the scene: step, time, the last
+  // metrics (they set the next step's substeps), the schedule position, the
+  // current target and region, and the backend's state.
+  void saveState(StateWriter& w) const;
 
   // One fluid time step (and the shape-matching steps that fall due in it).
   // Throws ff::Error naming the step and the phase if a value becomes NaN/Inf.
@@ -68,6 +77,7 @@ class Simulation {
   TargetSpec target_spec_;
   bool has_target_ = false;
   size_t next_schedule_ = 0;
+  double target_volume_ = 0.0;  // the rest volume the current target was scaled to
   long step_ = 0;
   long controlled_ = 0;
   double time_ = 0.0;

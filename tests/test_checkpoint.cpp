@@ -1,0 +1,209 @@
+// Checkpoints: a resumed run is bit-identical to one never interrupted (CPU
+// backend); SIGINT leaves a loadable checkpoint and complete output files; a
+// corrupted checkpoint or one of another version is a clear error.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.h"
+#include "core/error.h"
+#include "cpu/backend_cpu.h"
+#include "sim/checkpoint.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// 1000 particles, a sphere, then a box at 1.5 s: a resume at 1 s has to carry
+// the schedule position and the current target over.
+const char* kScene = R"({
+  "name": "ckpt",
+  "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]},
+  "fluid": [{"origin": [0.06, 0.0, 0.06], "dims": [10, 10, 10]}],
+  "schedule": [{"time": 0.0, "target": "sphere"}, {"time": 1.5, "target": "box"}]
+})";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void spit(const fs::path& p, const std::string& bytes) {
+  std::ofstream(p, std::ios::binary) << bytes;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Checkpoint, ResumeGivesByteIdenticalExports) {
+  const fs::path d = fftest::freshTempDir("ckpt_resume");
+  spit(d / "s.json", kScene);
+  const std::string scene = "'" + (d / "s.json").string() + "' --backend cpu";
+  // 1 s with a checkpoint at its end.
+  fftest::CliResult a = fftest::runFlowform(
+      "run " + scene + " --seconds 1 --checkpoint-every 1 --checkpoint '" + (d / "ck").string() + "'");
+  ASSERT_EQ(a.code, 0) << a.out;
+  const fs::path ck = d / "ck" / "checkpoint_000250.ffck";
+  ASSERT_TRUE(fs::exists(ck)) << a.out;
+  // Straight to 2 s, and the checkpoint resumed to 2 s.
+  fftest::CliResult b = fftest::runFlowform("run " + scene + " --seconds 2 --format ply --export '" +
+                                            (d / "straight").string() + "' --export-every 250 --metrics '" +
+                                            (d / "straight.csv").string() + "'");
+  ASSERT_EQ(b.code, 0) << b.out;
+  fftest::CliResult c = fftest::runFlowform(
+      "run --backend cpu --resume '" + ck.string() + "' --seconds 2 --format ply --export '" +
+      (d / "resumed").string() + "' --export-every 250 --metrics '" + (d / "resumed.csv").string() + "'");
+  ASSERT_EQ(c.code, 0) << c.out;
+  EXPECT_NE(c.out.find("resuming"), std::string::npos) << c.out;
+  // Step 500 (t = 2 s) is the straight run's frame 2 (frames at steps 0, 250,
+  // 500) and the resumed run's frame 1 (its export starts at step 250). The box
+  // target took over at 1.5 s.
+  for (const char* f : {"fluid", "control"}) {
+    const std::string s = slurp(d / "straight" / (std::string(f) + "_00002.ply"));
+    const std::string r = slurp(d / "resumed" / (std::string(f) + "_00001.ply"));
+    ASSERT_GT(s.size(), 1000u) << f;
+    EXPECT_TRUE(s == r) << f << " differs after resuming";
+  }
+  // The resumed run's first frame is the checkpoint's state: the straight run's frame 1.
+  EXPECT_TRUE(slurp(d / "straight" / "fluid_00001.ply") == slurp(d / "resumed" / "fluid_00000.ply"));
+  // The resumed metrics are the straight run's rows 251..500, bit for bit.
+  const auto s = lines(slurp(d / "straight.csv")), r = lines(slurp(d / "resumed.csv"));
+  ASSERT_EQ(s.size(), 501u);
+  ASSERT_EQ(r.size(), 251u);
+  EXPECT_EQ(s[0], r[0]);
+  for (size_t i = 1; i < r.size(); ++i) ASSERT_EQ(s[250 + i], r[i]) << "row " << i;
+  fs::remove_all(d);
+}
+
+TEST(Checkpoint, SigintLeavesALoadableCheckpointAndCompleteFiles) {
+  const fs::path d = fftest::freshTempDir("ckpt_sigint");
+  spit(d / "s.json", kScene);
+  const std::string csv = (d / "m.csv").string();
+  // Start a long run, wait until it has written a few metrics rows, interrupt it.
+  const std::string script = "'" + std::string(FF_FLOWFORM_EXE) + "' run '" + (d / "s.json").string() +
+                             "' --backend cpu --seconds 1000 --metrics '" + csv + "' --checkpoint '" +
+                             (d / "ck").string() + "' > '" + (d / "log").string() +
+                             "' 2>&1 & p=$!; i=0; "
+                             "while [ \"$(wc -l < '" +
+                             csv +
+                             "' 2>/dev/null || echo 0)\" -lt 20 ] && [ $i -lt 1200 ]; "
+                             "do sleep 0.05; i=$((i+1)); done; kill -INT $p; wait $p; echo rc=$?";
+  fftest::CliResult r = fftest::runShell(script);
+  const std::string log = slurp(d / "log");
+  EXPECT_NE(r.out.find("rc=130"), std::string::npos) << r.out << log;  // 128 + SIGINT
+  EXPECT_NE(log.find("stopped by SIGINT"), std::string::npos) << log;
+  // It names the checkpoint, and the named file resumes.
+  const size_t at = log.find("checkpoint " + (d / "ck").string() + "/checkpoint_");
+  ASSERT_NE(at, std::string::npos) << log;
+  const std::string path = log.substr(at + 11, log.find('\n', at) - at - 11);
+  ASSERT_TRUE(fs::exists(path)) << path;
+  EXPECT_FALSE(fs::exists(path + ".part"));
+  // Every metrics row is complete: 10 values and a line end.
+  const std::string text = slurp(csv);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  const auto rows = lines(text);
+  ASSERT_GE(rows.size(), 20u);
+  for (const std::string& row : rows) EXPECT_EQ(std::count(row.begin(), row.end(), ','), 9) << row;
+  // The checkpoint is at the last row's step.
+  const long step = std::stol(rows.back().substr(0, rows.back().find(',')));
+  EXPECT_NE(
+      path.find("checkpoint_" + std::string(6 - std::to_string(step).size(), '0') + std::to_string(step)),
+      std::string::npos)
+      << path << " vs " << rows.back();
+  fftest::CliResult resumed =
+      fftest::runFlowform("run --backend cpu --resume '" + path + "' --steps " + std::to_string(step + 2));
+  EXPECT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("2 steps"), std::string::npos) << resumed.out;
+  fs::remove_all(d);
+}
+
+class CheckpointFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fftest::freshTempDir("ckpt_file");
+    Simulation sim(ff::parseScene(kScene, "ckpt.json", ""), std::make_unique<ff::CpuBackend>(2));
+    for (int i = 0; i < 3; ++i) sim.step();
+    good = (dir / "good.ffck").string();
+    ff::writeCheckpoint(good, sim);
+    bytes = slurp(good);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  using Simulation = ff::Simulation;
+  // The message of loading `text` as a checkpoint file ("" if it loads).
+  std::string loadError(const std::string& text) {
+    const std::string p = (dir / "bad.ffck").string();
+    spit(p, text);
+    try {
+      ff::loadCheckpoint(p, std::make_unique<ff::CpuBackend>(2));
+    } catch (const ff::Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir;
+  std::string good, bytes;
+};
+
+TEST_F(CheckpointFile, RoundTripRestoresStepTimeAndParticles) {
+  auto sim = ff::loadCheckpoint(good, std::make_unique<ff::CpuBackend>(2));
+  EXPECT_EQ(sim->stepCount(), 3);
+  EXPECT_DOUBLE_EQ(sim->time(), 3.0 * double(0.004f));
+  ff::FluidState f;
+  sim->backend().readFluid(f);
+  EXPECT_EQ(f.size(), 1000u);
+  ASSERT_NE(sim->target(), nullptr);
+  EXPECT_EQ(sim->target()->label, "sphere");
+  EXPECT_EQ(sim->scene().name, "ckpt");
+}
+
+TEST_F(CheckpointFile, CorruptedByteIsAChecksumError) {
+  std::string b = bytes;
+  b[b.size() / 2] ^= 0x10;
+  const std::string e = loadError(b);
+  EXPECT_NE(e.find("bad.ffck"), std::string::npos) << e;
+  EXPECT_NE(e.find("checksum does not match"), std::string::npos) << e;
+}
+
+TEST_F(CheckpointFile, AnotherVersionIsNamed) {
+  std::string b = bytes;
+  const uint32_t v = ff::kCheckpointVersion + 1;
+  std::memcpy(&b[8], &v, 4);  // the version follows the 8-byte magic
+  const std::string e = loadError(b);
+  EXPECT_NE(e.find("another version of flowform"), std::string::npos) << e;
+  EXPECT_NE(e.find("format " + std::to_string(v)), std::string::npos) << e;
+}
+
+TEST_F(CheckpointFile, TruncatedAndForeignFilesAreRefused) {
+  std::string e = loadError(bytes.substr(0, bytes.size() - 100));
+  EXPECT_NE(e.find("truncated or corrupted"), std::string::npos) << e;
+  e = loadError("{\"name\": \"a scene, not a checkpoint\"}");
+  EXPECT_NE(e.find("not a flowform checkpoint"), std::string::npos) << e;
+  e = loadError("");
+  EXPECT_NE(e.find("not a flowform checkpoint"), std::string::npos) << e;
+}
+
+TEST_F(CheckpointFile, CliNamesTheBadCheckpoint) {
+  std::string b = bytes;
+  b[b.size() - 1] ^= 0x01;
+  spit(dir / "bad.ffck", b);
+  fftest::CliResult r =
+      fftest::runFlowform("run --backend cpu --resume '" + (dir / "bad.ffck").string() + "'");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("bad.ffck: the checkpoint is corrupted"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "sim/simulation.h"
 #include "host/backend_factory.h"
+#include "sim/simulation.h"
 
 namespace ff::app {
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/export_cli.h"
 #include "app/kernels_option.h"
 #include "app/progress.h"
 #include "core/error.h"
@@ -28,6 +29,7 @@
 #include "render/frame_data.h"
 #include "render/offscreen_context.h"
 #include "render/scene_renderer.h"
+#include "sim/export_frame.h"
 #include "sim/simulation.h"
 
 extern char** environ;
@@ -57,6 +59,8 @@ struct RenderCmdOptions {
   bool smoothing_given = false;  // else the renderer's default
   std::string camera;
   std::string video;
+  ExportOptions exports;  // with exports.dir: every rendered frame is also exported
+  std::string formats = "vtk";
 };
 
 // "yaw,pitch,distance[,x,y,z]": degrees, degrees, metres, and the point
@@ -193,6 +197,12 @@ int renderScene(const RenderCmdOptions& o) {
   auto backend = makeBackend(o.backend, o.device, o.threads, &note);
   if (!note.empty()) std::printf("flowform: %s\n", note.c_str());
   Simulation sim(scene, std::move(backend));
+  std::unique_ptr<FrameExporter> exporter;
+  if (!o.exports.dir.empty()) {
+    ExportOptions eo = o.exports;
+    eo.formats = parseExportFormats(o.formats, "--format");
+    exporter = std::make_unique<FrameExporter>(eo);
+  }
 
   render::OffscreenContext context(o.width, o.height);
   render::SceneRenderer renderer;
@@ -251,6 +261,7 @@ int renderScene(const RenderCmdOptions& o) {
       ++sim_frames;
     }
     const render::FrameData frame = render::captureFrame(sim);
+    if (exporter) exportFrameNow(sim, *exporter);
     renderer.draw(frame, camera, ro, o.width, o.height, context.framebuffer());
     const double draw_ms = renderer.timings().total_ms;
     draw_total += draw_ms;
@@ -297,6 +308,10 @@ int renderScene(const RenderCmdOptions& o) {
   std::printf("  read-back and PNG: %.1f ms per frame\n", write_total / double(o.frames));
   std::printf("  GL renderer: %s\n", context.renderer().c_str());
   std::printf("  frames in %s/frame_00000.png .. frame_%05ld.png\n", o.out.c_str(), o.frames - 1);
+  if (exporter)
+    std::printf("  exported %ld frames (%s%s) into %s: %s\n", exporter->frames(), o.formats.c_str(),
+                o.exports.surface.enabled ? ", surface" : "", o.exports.dir.c_str(),
+                exporter->costReport().c_str());
 
   if (!o.video.empty()) {
     makeVideo(ffmpeg, o.out, o.fps, o.video);
@@ -347,6 +362,9 @@ std::function<int()> addRenderCommand(CLI::App& app) {
   cmd->add_flag("--profile", o->profile,
                 "Also time each render pass (with a glFinish after each) and print the means");
   cmd->add_option("--video", o->video, "Also join the frames into this video (needs ffmpeg on PATH)");
+  addExportOptions(cmd, o->exports, o->formats, false,
+                   "Also export every rendered frame into this folder, as `flowform run --export` does "
+                   "(refused if it holds another run's frames, see --overwrite)");
   return [o, smoothing, every] {
     o->smoothing_given = smoothing->count() > 0;
     o->every_given = every->count() > 0;

@@ -160,7 +160,9 @@ std::function<int()> addRunCommand(CLI::App& app) {
   run->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
   addKernelsOption(run);
   run->add_option("--metrics", o->metrics, "Write per-step metrics to this CSV file");
-  addExportOptions(run, o->exports, o->formats, true);
+  addExportOptions(
+      run, o->exports, o->formats, true,
+      "Write frames into this folder (refused if it holds another run's frames, see --overwrite)");
   run->add_option("--print-every", o->print_every, "Print metrics every K steps");
   run->add_option("--checkpoint-every", o->checkpoint_every, "Write a checkpoint every T simulated seconds")
       ->check(CLI::PositiveNumber);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/export_cli.h"
 #include "app/kernels_option.h"
 #include "core/error.h"
 #include "viewer/viewer.h"
@@ -16,13 +17,18 @@ namespace {
 struct ViewCommandOptions {
   std::string scene;
   viewer::ViewerOptions viewer;
+  std::string formats = "vtk";
 };
 
 int runView(const ViewCommandOptions& o) {
   if (o.viewer.threads < 0) throw Error("--threads: must be >= 0");
   if (o.viewer.threads > 0) omp_set_num_threads(o.viewer.threads);
   const SceneDesc scene = o.scene.empty() ? defaultScene() : loadScene(o.scene);
-  return viewer::runViewer(scene, o.viewer);
+  viewer::ViewerOptions vo = o.viewer;
+  vo.record.formats = parseExportFormats(o.formats, "--format");
+  if (vo.record.dir.empty()) vo.record.dir = "flowform_recordings";
+  validateExportOptions(vo.record, "--export");
+  return viewer::runViewer(scene, vo);
 }
 
 }  // namespace
@@ -45,6 +51,9 @@ std::function<int()> addViewCommand(CLI::App& app) {
       ->check(CLI::Range(160, 16384));
   view->add_option("--height", o->viewer.height, "Window height in pixels (default 800)")
       ->check(CLI::Range(120, 16384));
+  addExportOptions(view, o->viewer.record, o->formats, true,
+                   "Folder for the recordings the E key starts and stops, each in a new take_NNN folder "
+                   "(default flowform_recordings)");
   return [o] { return runView(*o); };
 }
 

@@ -3,16 +3,11 @@
 
 namespace ff::app {
 
-void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_fps) {
-  auto* ex = cmd->add_option("--export", o.dir,
-                             "Write frames into this folder (refused if it holds another run's frames, "
-                             "see --overwrite)");
+void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_rate,
+                      const std::string& export_help) {
+  auto* ex = cmd->add_option("--export", o.dir, export_help);
   cmd->add_option("--format", formats, "Export formats, comma-separated: vtk, bgeo, ply (default vtk)")
       ->needs(ex);
-  auto* every = cmd->add_option("--export-every", o.every_steps,
-                                "Export a frame every K steps instead of at a frame rate")
-                    ->needs(ex)
-                    ->check(CLI::PositiveNumber);
   cmd->add_flag("--overwrite", o.overwrite,
                 "Remove the frames of another run (files of flowform's frame naming only) from the "
                 "export folder first")
@@ -39,11 +34,16 @@ void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, boo
       ->needs(surface);
   cmd->add_flag("--surface-vdb", o.surface.vdb, "Also write the surface's level set (surface_NNNNN.vdb)")
       ->needs(surface);
-  if (with_fps)
+  if (with_rate) {
+    auto* every = cmd->add_option("--export-every", o.every_steps,
+                                  "Export a frame every K steps instead of at a frame rate")
+                      ->needs(ex)
+                      ->check(CLI::PositiveNumber);
     cmd->add_option("--fps", o.fps, "Exported frames per simulated second (default 30)")
         ->needs(ex)
         ->excludes(every)
         ->check(CLI::Range(1e-3, 1e4));
+  }
 }
 
 }  // namespace ff::app

@@ -8,11 +8,13 @@
 
 namespace ff::app {
 
-// Adds --export DIR, --format LIST (into `formats`, parsed later with
-// parseExportFormats), --export-every K, --overwrite and, when `with_fps`,
-// --fps (which excludes --export-every); and the surface options --surface,
+// Adds --export DIR (described by `export_help`), --format LIST (into
+// `formats`, parsed later with parseExportFormats), --overwrite and, when
+// `with_rate`, --fps and --export-every K (which exclude each other); and the
+// surface options --surface,
 // --surface-format, --surface-radius, --surface-voxel, --surface-smoothing,
 // --surface-vdb.
-void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_fps);
+void addExportOptions(CLI::App* cmd, ExportOptions& o, std::string& formats, bool with_rate,
+                      const std::string& export_help);
 
 }  // namespace ff::app

@@ -26,9 +26,13 @@ void readParticleFrame(Simulation& sim, ParticleFrame& out) {
 
 bool exportFrameIfDue(Simulation& sim, FrameExporter& exporter) {
   if (!exporter.due(sim.time(), sim.stepCount())) return false;
+  exportFrameNow(sim, exporter);
+  return true;
+}
+
+void exportFrameNow(Simulation& sim, FrameExporter& exporter) {
   readParticleFrame(sim, exporter.buffer());
   exporter.write(exporter.buffer());
-  return true;
 }
 
 }  // namespace ff

@@ -15,5 +15,7 @@ void readParticleFrame(Simulation& sim, ParticleFrame& out);
 // Writes the next frame if one is due at the simulation's time and step
 // (FrameExporter::due). Returns whether it wrote. Throws ff::Error.
 bool exportFrameIfDue(Simulation& sim, FrameExporter& exporter);
+// Writes the next frame now (e.g. one per rendered frame).
+void exportFrameNow(Simulation& sim, FrameExporter& exporter);
 
 }  // namespace ff

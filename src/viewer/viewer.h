@@ -3,6 +3,7 @@
 #pragma once
 #include <string>
 
+#include "io/export_options.h"
 #include "scene/scene.h"
 
 namespace ff::viewer {
@@ -13,6 +14,7 @@ struct ViewerOptions {
   int threads = 0;               // OpenMP threads, 0 = default
   std::string script;            // timed actions to replay (empty: none)
   int width = 1280, height = 800;
+  ExportOptions record;  // what the E key records, and where (record.dir: the folder of the takes)
 };
 
 // Runs the viewer until the window closes (or the script quits). Returns the

@@ -74,6 +74,16 @@ void pickTypedTarget(ViewerUi& ui, ViewerSession& session) {
   }
 }
 
+void toggleRecording(ViewerUi& ui, ViewerSession& session) {
+  if (ui.recording.active()) return ui.report(ui.recording.stop(), false);
+  try {
+    const std::string folder = ui.recording.start(session.sim());
+    ui.report("recording into " + folder + " (E stops)", false);
+  } catch (const Error& e) {
+    ui.report(std::string("cannot record: ") + e.what(), true);
+  }
+}
+
 void applyRegion(ViewerUi& ui, ViewerSession& session, const RegionDesc& region) {
   try {
     session.setRegion(region);

@@ -270,6 +270,11 @@ void stepFrame(ViewerUi& ui, ViewerSession& session, const ScriptCursor* script)
     }
     ++n;
     ui.step_ms.add(msSince(s0));
+    try {
+      ui.recording.afterStep(session.sim());
+    } catch (const Error& e) {
+      ui.report(std::string("recording stopped: ") + e.what(), true);
+    }
     const Simulation& sim = session.sim();
     for (size_t p = 0; p < size_t(Phase::Count); ++p) ui.phase_ms[p].add(sim.lastStepMs()[p]);
     ui.iou.push(float(sim.metrics().iou));
@@ -288,6 +293,7 @@ void initUi(ViewerUi& ui, const ViewerSession& session, const ViewerOptions& opt
   ui.brush_radius = 0.15f * (c.max - c.min).maxCoeff();
   ui.render.show_region = true;
   ui.edit = session.params();
+  ui.recording.configure(options.record);
   // The first frame's view (window coordinates may differ on high-DPI screens;
   // C re-frames with the actual view).
   ui.view_x = int(std::min(ViewerUi::kPanelWidth, 0.5f * float(options.width)));
@@ -371,8 +377,12 @@ int runViewer(const SceneDesc& scene, const ViewerOptions& options) {
 
     handleInput(ui, session);
     drawPanel(ui, session);
+    if ((ui.reset_to_scene_request || ui.reset_request) && ui.recording.active())
+      ui.report(ui.recording.stop() + " (stopped by the reset)", false);
     if (ui.reset_to_scene_request || ui.reset_request)
       resetSimulation(ui, session, !ui.reset_to_scene_request);
+    if (ui.record_request) toggleRecording(ui, session);
+    ui.record_request = false;
     ui.reset_request = ui.reset_to_scene_request = false;
 
     if (!req.hold() && (ui.playing || ui.step_once)) stepFrame(ui, session, script.get());

@@ -88,6 +88,9 @@ void handleKey(ViewerUi& ui, ViewerSession& session, const ViewerUi::KeyPress& k
     case GLFW_KEY_P:
       ui.screenshot_request = true;
       break;
+    case GLFW_KEY_E:
+      ui.record_request = true;
+      break;
     case GLFW_KEY_EQUAL:
     case GLFW_KEY_KP_ADD:
       ui.camera.zoom(0.9f);

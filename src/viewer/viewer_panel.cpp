@@ -41,6 +41,16 @@ void runSection(ViewerUi& ui, ViewerSession& session) {
     ImGui::SetTooltip("Stop stepping in a frame after this long (at least one step), so the view stays live");
   const Simulation& sim = session.sim();
   ImGui::Text("t = %.3f s   step %ld   substeps %d", sim.time(), sim.stepCount(), sim.metrics().substeps);
+  if (ImGui::Button(ui.recording.active() ? "Stop recording (E)" : "Record (E)")) ui.record_request = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Export frames at %g fps of simulated time into a new take_NNN folder of %s",
+                      ui.recording.options().fps, ui.recording.options().dir.c_str());
+  ImGui::SameLine();
+  if (ui.recording.active())
+    ImGui::TextColored(kErrorColour, "REC %ld frames: %s", ui.recording.frames(),
+                       ui.recording.folder().c_str());
+  else
+    ImGui::TextColored(kDimColour, "into %s", ui.recording.options().dir.c_str());
 }
 
 void targetSection(ViewerUi& ui, ViewerSession& session) {
@@ -286,6 +296,7 @@ void drawHelp(bool* open, float x) {
       {"M", "screen-space fluid / particles"},
       {"O, G, W", "control particles (s_i), target ghost, region"},
       {"P", "screenshot (flowform_NNNN.png, current folder)"},
+      {"E", "start / stop recording frames (a new take_NNN folder each time)"},
       {"Tab", "hide / show the panel"},
       {"H, F1", "this help"},
       {"ctrl+Q", "quit"},

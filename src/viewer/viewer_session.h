@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "sim/simulation.h"
 #include "scene/scene.h"
+#include "sim/simulation.h"
 
 namespace ff::viewer {
 

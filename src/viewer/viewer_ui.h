@@ -7,11 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "sim/backend.h"
 #include "core/params.h"
 #include "render/camera.h"
 #include "render/frame_data.h"
 #include "render/scene_renderer.h"
+#include "sim/backend.h"
+#include "viewer/recording.h"
 #include "viewer/target_catalog.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_stats.h"
@@ -41,6 +42,8 @@ struct ViewerUi {
   bool reset_request = false, reset_to_scene_request = false;
   bool quit = false;
   bool screenshot_request = false;  // interactive screenshot (P key)
+  bool record_request = false;      // start / stop recording (E key, panel button)
+  Recording recording;              // frames exported while recording (viewer/recording.h)
 
   // Key presses since the last frame, in order (GLFW key codes and modifier
   // bits; repeat: held down). Queued by the window's key callback, so that a
@@ -104,6 +107,8 @@ void applyRegion(ViewerUi& ui, ViewerSession& session, const RegionDesc& region)
 void applyParams(ViewerUi& ui, ViewerSession& session, const Params& params);
 void resetSimulation(ViewerUi& ui, ViewerSession& session, bool keep_edits);
 void toggleMode(ViewerUi& ui, PickMode mode);
+// Starts or stops the recording, reporting where it goes or what it wrote.
+void toggleRecording(ViewerUi& ui, ViewerSession& session);
 // The camera that shows the whole container in the current view (C key).
 render::OrbitCamera homeCamera(const ViewerUi& ui, const ViewerSession& session);
 std::string describeRegion(const RegionDesc& region);

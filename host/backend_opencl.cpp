@@ -59,7 +59,7 @@ int OpenClBackend::beginPhase(Phase p) {
 }
 
 void OpenClBackend::endPhase() {
-  if (profiling_) d_->queue().finish();
+  if (profiling_) finishQueue(d_->queue());
 }
 
 void OpenClBackend::init(const Params& params, const ContainerDesc& box, const FluidState& fluid) {
@@ -88,7 +88,7 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
     for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
     setParams(params);
     grid_state_ = GridState::Stale;
-    q.finish();
+    finishQueue(q);
   });
 }
 
@@ -130,7 +130,7 @@ void OpenClBackend::uploadControl() {
   upload(q, c, d.q, identity);
   for (DeviceBuffer* b : {&d.com_x, &d.com_y, &d.com_z, &d.ccv_x, &d.ccv_y, &d.ccv_z})
     b->ensure(c, nclusters_ * sizeof(float));
-  q.finish();  // `identity` must outlive the non-blocking writes
+  finishQueue(q);  // `identity` must outlive the non-blocking writes
 }
 
 void OpenClBackend::setMetricsTarget(const TargetShape* target) {
@@ -138,7 +138,7 @@ void OpenClBackend::setMetricsTarget(const TargetShape* target) {
   if (!target) return;
   clGuard("uploading the metrics target", [&] {
     upload(d_->queue(), d_->ctx.context(), d_->inside, target->grid.inside);
-    d_->queue().finish();
+    finishQueue(d_->queue());
   });
 }
 
@@ -216,7 +216,7 @@ void OpenClBackend::integrate(float dt) {
 Phase OpenClBackend::firstNonFinite(int* substep) {
   return clGuard("reading the non-finite record", [&] {
     cl_int tag = 0;
-    d_->queue().enqueueReadBuffer(d_->bad.get(), CL_TRUE, 0, sizeof(cl_int), &tag);
+    blockingRead(d_->queue(), d_->bad.get(), sizeof(cl_int), &tag);
     if (tag != 0) fillBuffer(d_->queue(), d_->bad, cl_int(0), 1);
     return log_.take(uint32_t(tag), substep);
   });

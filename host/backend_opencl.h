@@ -47,6 +47,7 @@ class OpenClBackend : public Backend {
   StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
   void setProfiling(bool on) override { profiling_ = on; }
+  HostSyncs hostSyncs() const override { return clHostSyncs(); }
   size_t memoryBytes() const override;
 
   void readFluid(FluidState& out) override;
@@ -97,7 +98,7 @@ class OpenClBackend : public Backend {
   // next buildGrid); Sorted after buildGrid reordered the arrays by it.
   enum class GridState { Stale, Index, Sorted } grid_state_ = GridState::Stale;
   NonFiniteLog log_;
-  bool profiling_ = true;
+  bool profiling_ = false;
   bool lanes_ = false;  // the float8-lane kernels (KernelVariant)
 };
 

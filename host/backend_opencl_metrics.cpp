@@ -39,7 +39,7 @@ StepMetrics OpenClBackend::computeMetrics() {
       d.partial.ensure(c, groups * width * sizeof(float));
       launchGroups(q, k, groups, local, args..., d.partial.get(), cl::Local(local * width * sizeof(float)));
       d.partial_host.resize(groups * width);
-      q.enqueueReadBuffer(d.partial.get(), CL_TRUE, 0, groups * width * sizeof(float), d.partial_host.data());
+      blockingRead(q, d.partial.get(), groups * width * sizeof(float), d.partial_host.data());
       return finish(d.partial_host, groups, width, max_mask);
     };
     if (n_ > 0) {
@@ -104,7 +104,7 @@ StepMetrics OpenClBackend::computeMetrics() {
                    d.Z(), fg.order.get(), fg.start.get(), fg.geom.geo(), fg.geom.dims(), h, mass, 0.5f * rho0,
                    d.partial.get(), tmp);
     d.partial_uint.resize(groups * 2);
-    q.enqueueReadBuffer(d.partial.get(), CL_TRUE, 0, groups * 2 * sizeof(cl_uint), d.partial_uint.data());
+    blockingRead(q, d.partial.get(), groups * 2 * sizeof(cl_uint), d.partial_uint.data());
     long inter = 0, uni = 0;
     for (size_t k = 0; k < groups; ++k)
       inter += long(d.partial_uint[2 * k]), uni += long(d.partial_uint[2 * k + 1]);

@@ -46,6 +46,11 @@ bool clPoisonEnabled() {
   return v && std::strcmp(v, "1") == 0;
 }
 
+Backend::HostSyncs& clHostSyncs() {
+  static Backend::HostSyncs count;
+  return count;
+}
+
 void DeviceBuffer::ensure(const cl::Context& ctx, size_t bytes) {
   bytes = std::max<size_t>(bytes, 16);
   if (bytes <= bytes_) return;

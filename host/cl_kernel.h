@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "host/cl_context.h"
 #include "host/cl_errors.h"
+#include "sim/backend.h"
 
 namespace ff {
 
@@ -81,10 +82,25 @@ void upload(cl::CommandQueue& q, const cl::Context& ctx, DeviceBuffer& b, const 
   if (!v.empty()) q.enqueueWriteBuffer(b.get(), CL_FALSE, 0, v.size() * sizeof(T), v.data());
 }
 
+// Host synchronisations of every queue since the program started (a
+// process-wide count; callers take differences).
+Backend::HostSyncs& clHostSyncs();
+
+// A blocking read (counted).
+inline void blockingRead(cl::CommandQueue& q, const cl::Buffer& b, size_t bytes, void* out) {
+  ++clHostSyncs().reads;
+  q.enqueueReadBuffer(b, CL_TRUE, 0, bytes, out);
+}
+// Waits for everything enqueued on q (counted).
+inline void finishQueue(cl::CommandQueue& q) {
+  ++clHostSyncs().waits;
+  q.finish();
+}
+
 template <class T>
 void download(cl::CommandQueue& q, const DeviceBuffer& b, size_t n, std::vector<T>& v) {
   v.resize(n);
-  if (n) q.enqueueReadBuffer(b.get(), CL_TRUE, 0, n * sizeof(T), v.data());
+  if (n) blockingRead(q, b.get(), n * sizeof(T), v.data());
 }
 
 template <class T>

@@ -34,6 +34,8 @@ BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, 
   r.backend = backend->name();
   r.device = backend->device();
   Simulation sim(c.scene, std::move(backend));
+  sim.setProfiling(true);
+  sim.setMetricsEvery(b.metrics_every);
   for (int i = 0; i < warmup; ++i) sim.step();
   constexpr size_t kPhases = size_t(Phase::Count);
   std::array<std::vector<double>, kPhases> samples;
@@ -41,7 +43,14 @@ BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, 
   totals.reserve(size_t(steps));
   double substeps = 0.0;
   for (int i = 0; i < steps; ++i) {
+    const Backend::HostSyncs before = sim.backend().hostSyncs();
     sim.step();
+    const Backend::HostSyncs after = sim.backend().hostSyncs();
+    const double reads = double(after.reads - before.reads), waits = double(after.waits - before.waits);
+    if (sim.metricsFresh())
+      r.reads_with += reads, r.waits_with += waits, ++r.steps_with;
+    else
+      r.reads_without += reads, r.waits_without += waits, ++r.steps_without;
     double total = 0.0;
     for (size_t p = 0; p < kPhases; ++p) {
       samples[p].push_back(sim.lastStepMs()[p]);
@@ -58,6 +67,8 @@ BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, 
   r.control = sim.metrics().control_count;
   r.memory_bytes = sim.backend().memoryBytes();
   r.final_iou = sim.metrics().iou;
+  if (r.steps_with > 0) r.reads_with /= r.steps_with, r.waits_with /= r.steps_with;
+  if (r.steps_without > 0) r.reads_without /= r.steps_without, r.waits_without /= r.steps_without;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -13,9 +13,10 @@ namespace ff::app {
 
 // What one backend configuration is: kind for makeBackend and the device index.
 struct BenchBackend {
-  std::string kind;  // "cpu" or "opencl"
-  int device = -1;   // OpenCL device index
-  int threads = 0;   // OpenMP threads (0: default)
+  std::string kind;       // "cpu" or "opencl"
+  int device = -1;        // OpenCL device index
+  int threads = 0;        // OpenMP threads (0: default)
+  int metrics_every = 1;  // Simulation::setMetricsEvery
 };
 
 struct PhaseStats {
@@ -33,6 +34,10 @@ struct BenchResult {
   size_t memory_bytes = 0;  // the backend's particle, grid and control buffers
   double final_iou = 0.0;
   double wall_s = 0.0;  // whole run, warm-up and setup included
+  // Host synchronisations per timed step, in steps with and without metrics
+  // (Backend::hostSyncs: blocking reads, queue waits), and how many of each.
+  double reads_with = 0.0, waits_with = 0.0, reads_without = 0.0, waits_without = 0.0;
+  int steps_with = 0, steps_without = 0;
 };
 
 // Median, minimum and maximum of the samples (which it reorders).

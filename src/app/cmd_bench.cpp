@@ -36,6 +36,7 @@ struct BenchOptions {
   double budget_s = 180.0;
   std::string csv;
   bool plot = false;
+  int metrics_every = 1;
 };
 
 // The backends to time: the OpenMP one and every OpenCL device (or the ones asked for).
@@ -43,7 +44,7 @@ std::vector<BenchBackend> chooseBackends(const BenchOptions& o) {
   std::vector<BenchBackend> list;
   if (o.backend != "all" && o.backend != "cpu" && o.backend != "opencl")
     throw Error("--backend: '" + o.backend + "' is not one of all, cpu, opencl");
-  if (o.backend == "all" || o.backend == "cpu") list.push_back({"cpu", -1, o.threads});
+  if (o.backend == "all" || o.backend == "cpu") list.push_back({"cpu", -1, o.threads, o.metrics_every});
   if (o.backend == "all" || o.backend == "opencl") {
 #ifdef FF_NO_OPENCL
     if (o.backend == "opencl") throw Error("--backend opencl: this flowform was built without OpenCL");
@@ -60,9 +61,9 @@ std::vector<BenchBackend> chooseBackends(const BenchOptions& o) {
       if (o.device >= int(devices.size()))
         throw Error("--device " + std::to_string(o.device) + ": there are " + std::to_string(devices.size()) +
                     " OpenCL devices (see `flowform devices`)");
-      list.push_back({"opencl", o.device, o.threads});
+      list.push_back({"opencl", o.device, o.threads, o.metrics_every});
     } else {
-      for (const ClDeviceInfo& d : devices) list.push_back({"opencl", d.index, o.threads});
+      for (const ClDeviceInfo& d : devices) list.push_back({"opencl", d.index, o.threads, o.metrics_every});
     }
 #endif
   }
@@ -137,6 +138,11 @@ class Bench {
     std::fflush(stderr);
     BenchResult r = runBenchCase(c, b, warmup, steps);
     std::fprintf(stderr, " %.2f ms/step (%s), %.0f s\n", r.total.median, r.device.c_str(), r.wall_s);
+    std::printf(
+        "host syncs per step (%s, %s): %d steps with metrics: %.2f blocking reads, %.2f waits; %d "
+        "without: %.2f blocking reads, %.2f waits (profiling on: one wait per phase)\n",
+        c.name.c_str(), r.backend.c_str(), r.steps_with, r.reads_with, r.waits_with, r.steps_without,
+        r.reads_without, r.waits_without);
     all_.push_back(r);
     // Rewritten after every case: an interrupted bench keeps what it measured.
     if (!o_.csv.empty()) writeBenchCsv(o_.csv, all_);
@@ -207,6 +213,9 @@ std::function<int()> addBenchCommand(CLI::App& app) {
       "180)");
   cmd->add_option("--csv", o->csv, "Write scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max");
   cmd->add_flag("--plot", o->plot, "Write PNG plots next to the CSV (python3-matplotlib)");
+  cmd->add_option("--metrics-every", o->metrics_every,
+                  "Metrics every K steps (default 1); the host-sync count separates steps with and without")
+      ->check(CLI::PositiveNumber);
   return [o] { return runBench(*o); };
 }
 

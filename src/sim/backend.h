@@ -57,12 +57,20 @@ class Backend {
   // so Simulation asks once per step.
   virtual Phase firstNonFinite(int* substep = nullptr) = 0;
 
-  // Profiling: when on (the default), every phase waits for its work to finish,
+  // Profiling: when on, every phase waits for its work to finish,
   // so that timing a phase call measures the phase. When off, an OpenCL phase
   // only enqueues its kernels and the device's time is counted by whichever
   // later call waits for results (the metrics phase, which reads its sums back).
-  // The OpenMP backend always runs a phase to completion.
+  // The OpenMP backend always runs a phase to completion. Off by default
+  // (flowform bench and `run --profile` switch it on).
   virtual void setProfiling(bool on) { (void)on; }
+
+  // Host synchronisations so far: blocking reads of device memory and waits
+  // for the device's queue to finish (the OpenMP backend has none).
+  struct HostSyncs {
+    long reads = 0, waits = 0;
+  };
+  virtual HostSyncs hostSyncs() const { return {}; }
 
   // Bytes the backend holds for the run: every particle array, grid, control
   // and metrics buffer (capacity, on the host for the OpenMP backend, on the

@@ -85,6 +85,7 @@ void Simulation::check(long step, double time, int substeps) {
   const Phase p = backend_->firstNonFinite(&substep);
   if (p == Phase::Count) return;
   std::ostringstream os;
+  if (unchecked_from_ < step) os << "steps " << unchecked_from_ << " to ";
   os << "step " << step << " (t = " << time << " s";
   if (substeps > 1) os << ", substep " << substep + 1 << " of " << substeps;
   os << "): a value became NaN or Inf in phase '" << phaseName(p) << "'";
@@ -115,14 +116,20 @@ void Simulation::step() {
     timed(Phase::Integrate, [&] { backend_->integrate(dt); });
     timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
   }
-  // One check per step (on OpenCL one int read back): the phase that first
-  // wrote a NaN or Inf, in this step's phase and substep order.
+  // One check per step with metrics (on OpenCL one int read back): the phase
+  // that first wrote a NaN or Inf since the last check, in phase and substep order.
   const long step = step_;
   const double time = time_;
   ++step_;
   time_ += double(fp.time_step);
-  timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
-  check(step, time, n);
+  const bool want = metrics_requested_ || step_ % metrics_every_ == 0;
+  metrics_requested_ = false;
+  metrics_fresh_ = want;
+  if (want) {
+    timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
+    check(step, time, unchecked_from_ < step ? 0 : n);
+    unchecked_from_ = step_;
+  }
   metrics_.step = step_;
   metrics_.time = time_;
   metrics_.substeps = n;

@@ -49,11 +49,21 @@ class Simulation {
   size_t targetVoxelisations() const { return cache_.voxelisations(); }
   long controlledCount() const { return controlled_; }
 
-  // Profiling (the default): every phase waits for its work, so phaseMs()
-  // times each phase. Off: an OpenCL phase only enqueues its kernels, and the
-  // device time of the whole step is counted in the metrics phase, which waits
-  // for its results (the total stays right, the split does not).
+  // Profiling: every phase waits for its work, so phaseMs() times each phase.
+  // Off (the default): an OpenCL phase only enqueues its kernels, and the
+  // device time is counted in the phase that next waits for results (the
+  // metrics phase: the total stays right, the split does not).
   void setProfiling(bool on) { backend_->setProfiling(on); }
+
+  // Metrics every k-th step (k >= 1; 1, the default: every step), and in the
+  // next step after requestMetrics(). Steps without metrics read nothing back
+  // from an OpenCL device: no iou, and the NaN/Inf check waits for the next
+  // step with metrics (it then names the phase and the range of steps). The
+  // CFL substep count uses the latest metrics.
+  void setMetricsEvery(int k) { metrics_every_ = k < 1 ? 1 : k; }
+  void requestMetrics() { metrics_requested_ = true; }
+  // Whether the last step computed metrics() (else they are from an earlier step).
+  bool metricsFresh() const { return metrics_fresh_; }
 
   // Accumulated milliseconds per phase and the number of steps they cover.
   const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
@@ -69,6 +79,9 @@ class Simulation {
   void timed(Phase p, F&& f);
   // Throws ff::Error naming the phase (and substep) that first wrote a NaN or Inf.
   void check(long step, double time, int substeps);
+  int metrics_every_ = 1;
+  bool metrics_requested_ = false, metrics_fresh_ = false;
+  long unchecked_from_ = 0;  // the first step not yet checked for NaN/Inf
 
   SceneDesc scene_;
   std::unique_ptr<Backend> backend_;

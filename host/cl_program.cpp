@@ -1,6 +1,10 @@
 #include "host/cl_program.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "core/embedded.h"
@@ -88,6 +92,37 @@ std::string kernelBuildOptions(const ClDeviceInfo& info) {
   return opt;
 }
 
+std::string shortBuildLog(const std::string& log) {
+  constexpr size_t kMaxLines = 12, kMaxChars = 2000;
+  // The first lines that report an error, with the line after each (the
+  // source line the compiler quotes); all of the log if it is short.
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(log);
+    std::string line;
+    while (std::getline(in, line)) lines.push_back(line);
+  }
+  std::string head;
+  size_t shown = 0;
+  for (size_t i = 0; i < lines.size() && shown < kMaxLines; ++i) {
+    if (lines.size() > kMaxLines && lines[i].find("error") == std::string::npos) continue;
+    for (size_t k = i; k < std::min(lines.size(), i + (lines.size() > kMaxLines ? 2 : 1)); ++k, ++shown)
+      head += lines[k] + "\n";
+  }
+  if (head.size() > kMaxChars) head = head.substr(0, kMaxChars) + "...\n";
+  if (log.size() <= head.size()) return "build log:\n" + log;
+  // Keep the whole log in a file the message names.
+  std::error_code ec;
+  const std::filesystem::path file = std::filesystem::temp_directory_path(ec) /
+                                     ("flowform_kernel_build_" + std::to_string(::getpid()) + ".log");
+  std::ofstream out(file, std::ios::binary);
+  out << log;
+  const std::string where =
+      out.good() ? "the full log (" + std::to_string(log.size()) + " bytes) is in " + file.string()
+                 : "the full log could not be written to " + file.string();
+  return "first errors of the build log (" + where + "):\n" + head;
+}
+
 cl::Program buildKernelProgram(const ClContext& cl, const std::vector<std::string>& files) {
   std::set<std::string> included;
   std::string source;
@@ -110,7 +145,7 @@ cl::Program buildProgramSource(const ClContext& cl, const std::string& source) {
     }
     while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
     throw Error("OpenCL: building the kernels for " + cl.info().name + " with \"" + options +
-                "\": " + clErrorText(e.what(), e.err()) + "; build log:\n" + log);
+                "\": " + clErrorText(e.what(), e.err()) + "; " + shortBuildLog(log));
   }
   return program;
 }

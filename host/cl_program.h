@@ -26,8 +26,15 @@ std::string resolveKernelSource(const std::string& file, std::set<std::string>& 
 // arithmetic matches the CPU backend's.
 std::string kernelBuildOptions(const ClDeviceInfo& info);
 
+// A build log for a message: all of a short log; of a long one the first
+// lines that report errors (at most 12 lines, 2000 characters), and the whole
+// log is written to TMPDIR/flowform_kernel_build_PID.log, whose path the text
+// gives.
+std::string shortBuildLog(const std::string& log);
+
 // Builds one program from the given embedded .cl files (in order). A build
-// failure throws ff::Error with the device's build log.
+// failure throws ff::Error with the first errors of the device's build log
+// (shortBuildLog).
 cl::Program buildKernelProgram(const ClContext& cl, const std::vector<std::string>& files);
 
 // Builds a program from OpenCL C source text, as buildKernelProgram does.

@@ -168,7 +168,7 @@ TEST(ViewerScript, EveryBadInputNamesTheFileAndTheField) {
        "demo.json: actions[0].region.sphere.radius: required key is missing"},
       {R"({"actions": [{"at": 0, "region": "some"}]})", "demo.json: actions[0].region: must be \"all\""},
       {R"({"actions": [{"at": 0, "params": {"fluid": {"viscosity": -1}}}]})",
-       "demo.json: actions[0].params.fluid.viscosity: must be >= 0 (got -1)"},
+       "demo.json: actions[0].params.fluid.viscosity: must be in [0, 10000] (got -1)"},
       {R"({"actions": [{"at": 0, "params": {"fluid": {"viscosity": "thick"}}}]})",
        "demo.json: actions[0].params.fluid.viscosity: must be a number"},
       {R"({"actions": [{"at": 0, "params": {"shape_matching": {"cluster_stride": 1.5}}}]})",

@@ -24,6 +24,7 @@
 #include "app/kernels_option.h"
 #include "app/progress.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "host/backend_factory.h"
 #include "render/camera.h"
 #include "render/frame_data.h"
@@ -191,7 +192,7 @@ int renderScene(const RenderCmdOptions& o) {
   SceneDesc scene = o.scene.empty() ? defaultScene() : loadScene(o.scene);
   const double dt = scene.params.fluid.time_step;
   const long every = o.every_given ? o.every : std::max(1L, long(std::lround(1.0 / (o.fps * dt))));
-  const long start_steps = long(std::ceil(o.start / dt - 1e-9));
+  const long start_steps = o.start > 0.0 ? runSteps(o.start, dt, "--start") : 0;
 
   std::string note;
   auto backend = makeBackend(o.backend, o.device, o.threads, &note);

@@ -14,6 +14,7 @@
 #include "app/progress.h"
 #include "app/run_checkpoints.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "host/backend_factory.h"
 #include "io/metrics_csv.h"
 #include "sim/checkpoint.h"
@@ -28,6 +29,7 @@ struct RunOptions {
   std::string scene;
   double seconds = 0.0;
   long steps = 0;
+  bool seconds_given = false, steps_given = false;
   int threads = 0;
   std::string backend = "auto";
   int device = -1;
@@ -58,8 +60,12 @@ int runScene(const RunOptions& o) {
   const SceneDesc& scene = sim.scene();
   // --seconds and --steps count from the start of the run, also when resuming.
   const double dt = scene.params.fluid.time_step;
-  const long end =
-      o.steps > 0 ? o.steps : long(std::ceil((o.seconds > 0.0 ? o.seconds : scene.duration) / dt - 1e-9));
+  if (o.steps_given && !(o.steps >= 1 && double(o.steps) <= kMaxRunSteps))
+    throw Error("--steps: must be in [1, " + std::to_string(long(kMaxRunSteps)) + "] (got " +
+                std::to_string(o.steps) + ")");
+  const long end = o.steps_given     ? o.steps
+                   : o.seconds_given ? runSteps(o.seconds, dt, "--seconds")
+                                     : runSteps(scene.duration, dt, scene.source + ": duration");
   const long first = sim.stepCount();
   const long steps = end - first;
   if (steps <= 0)
@@ -156,9 +162,9 @@ std::function<int()> addRunCommand(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* run = app.add_subcommand("run", "Run a scene headless (the default scene if none is given)");
   run->add_option("scene", o->scene, "Scene file (JSON); omitted: the built-in default scene");
-  auto* sec = run->add_option("--seconds", o->seconds, "Simulated seconds (default: the scene's duration)")
-                  ->check(CLI::PositiveNumber);
-  auto* st = run->add_option("--steps", o->steps, "Number of steps")->check(CLI::PositiveNumber);
+  // Ranges are checked in runScene (CLI11's PositiveNumber lets NaN through).
+  auto* sec = run->add_option("--seconds", o->seconds, "Simulated seconds (default: the scene's duration)");
+  auto* st = run->add_option("--steps", o->steps, "Number of steps");
   sec->excludes(st);
   run->add_option("--threads", o->threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
@@ -184,7 +190,11 @@ std::function<int()> addRunCommand(CLI::App& app) {
                   "Folder for checkpoints (default: checkpoints); SIGINT/SIGTERM also write one there");
   run->add_option("--resume", o->resume,
                   "Continue the run saved in this checkpoint (--seconds/--steps count from its start)");
-  return [o] { return runScene(*o); };
+  return [o, sec, st] {
+    o->seconds_given = sec->count() > 0;
+    o->steps_given = st->count() > 0;
+    return runScene(*o);
+  };
 }
 
 }  // namespace ff::app

@@ -10,6 +10,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 
 namespace {
 
@@ -45,6 +46,11 @@ int main(int argc, char** argv) {
   CLI::App app{
       "flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};
   app.require_subcommand(0, 1);
+  std::string max_memory;
+  app.add_option("--max-memory", max_memory,
+                 "The most memory a run may plan to use, e.g. 4G or 512M (default: half of the machine's "
+                 "memory, or of the process's memory limit)");
+  app.fallthrough();  // --max-memory may also follow the subcommand
   auto run = ff::app::addRunCommand(app);
   auto devices = ff::app::addDevicesCommand(app);
   auto view = ff::app::addViewCommand(app);
@@ -71,6 +77,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    if (!max_memory.empty())
+      ff::setMemoryLimit(ff::parseByteSize(max_memory, "--max-memory"), "--max-memory");
     for (CLI::App* sub : app.get_subcommands()) {
       if (sub->get_name() == "run") return run();
       if (sub->get_name() == "devices") return devices();

@@ -8,10 +8,13 @@
 namespace ff {
 
 namespace {
-int64_t key(int a, int b, int c) {
-  return (int64_t(a) + (1 << 20)) | ((int64_t(b) + (1 << 20)) << 21) | ((int64_t(c) + (1 << 20)) << 42);
+// Lattice coordinates are voxel indices divided by the stride: well inside
+// +-2^20 for any grid the target module makes (at most 4096 voxels per axis).
+int64_t key(int64_t a, int64_t b, int64_t c) {
+  return (a + (1 << 20)) | ((b + (1 << 20)) << 21) | ((c + (1 << 20)) << 42);
 }
-int floorDiv(int a, int b) {
+// In 64 bits: a voxel index +- half_width must not overflow.
+int64_t floorDiv(int64_t a, int64_t b) {
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
 }  // namespace
@@ -24,20 +27,19 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   std::vector<int64_t> centre_keys;
   std::vector<int> cxs, cys, czs;
   for (size_t p = 0; p < n; ++p) {
-    int lo[3] = {floorDiv(vi[p] - half_width + stride - 1, stride),
-                 floorDiv(vj[p] - half_width + stride - 1, stride),
-                 floorDiv(vk[p] - half_width + stride - 1, stride)};
-    int hi[3] = {floorDiv(vi[p] + half_width, stride), floorDiv(vj[p] + half_width, stride),
-                 floorDiv(vk[p] + half_width, stride)};
-    for (int c = lo[2]; c <= hi[2]; ++c)
-      for (int b = lo[1]; b <= hi[1]; ++b)
-        for (int a = lo[0]; a <= hi[0]; ++a) {
+    const int64_t w = half_width, s = stride;
+    const int64_t lo[3] = {floorDiv(vi[p] - w + s - 1, s), floorDiv(vj[p] - w + s - 1, s),
+                           floorDiv(vk[p] - w + s - 1, s)};
+    const int64_t hi[3] = {floorDiv(vi[p] + w, s), floorDiv(vj[p] + w, s), floorDiv(vk[p] + w, s)};
+    for (int64_t c = lo[2]; c <= hi[2]; ++c)
+      for (int64_t b = lo[1]; b <= hi[1]; ++b)
+        for (int64_t a = lo[0]; a <= hi[0]; ++a) {
           int64_t k = key(a, b, c);
           auto it = groups.find(k);
           if (it == groups.end()) {
             it = groups.emplace(k, std::vector<uint32_t>()).first;
             centre_keys.push_back(k);
-            cxs.push_back(a * stride), cys.push_back(b * stride), czs.push_back(c * stride);
+            cxs.push_back(int(a * s)), cys.push_back(int(b * s)), czs.push_back(int(c * s));
           }
           it->second.push_back(uint32_t(p));
         }
@@ -65,7 +67,7 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
       size_t best = 0;
       long bestd = LONG_MAX;
       for (size_t c = 0; c < kept.size(); ++c) {
-        long dx = kx[c] - vi[p], dy = ky[c] - vj[p], dz = kz[c] - vk[p];
+        long dx = long(kx[c]) - vi[p], dy = long(ky[c]) - vj[p], dz = long(kz[c]) - vk[p];
         long d = dx * dx + dy * dy + dz * dz;
         if (d < bestd) bestd = d, best = c;
       }

@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/param_table.h"
+#include "core/resource_limits.h"
 
 namespace ff {
 
@@ -19,6 +21,12 @@ int FluidParams::substepsFor(double max_density, double max_speed) const {
   const double dt_cfl = double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12);
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+}
+
+double ShapeMatchParams::clustersPerParticle() const {
+  const double per_axis =
+      std::floor(2.0 * double(cluster_half_width) / double(std::max(1, cluster_stride))) + 1.0;
+  return per_axis * per_axis * per_axis;
 }
 
 Params presetParams(const std::string& name) {
@@ -37,73 +45,62 @@ std::string formatValue(double v) {
   return buf;
 }
 
-// Throws "WHERE: FIELD: must be REQUIREMENT (got V)" unless `ok`; a value that
-// passes the range test but is infinite is reported as "must be finite".
-void check(const std::string& where, const char* field, double v, bool ok, const char* requirement) {
-  std::string problem;
-  if (!ok)
-    problem = std::string("must be ") + requirement;
-  else if (!std::isfinite(v))
-    problem = "must be finite";
-  else
-    return;
+[[noreturn]] void fail(const std::string& where, const std::string& field, const std::string& problem) {
   std::string prefix = where.empty() ? std::string() : where + ": ";
-  throw Error(prefix + field + ": " + problem + " (got " + formatValue(v) + ")");
+  throw Error(prefix + field + ": " + problem);
 }
 
-void positive(const std::string& w, const char* f, double v) {
-  check(w, f, v, v > 0, "> 0");
-}
-void nonNegative(const std::string& w, const char* f, double v) {
-  check(w, f, v, v >= 0, ">= 0");
-}
-void unitInterval(const std::string& w, const char* f, double v) {
-  check(w, f, v, v >= 0 && v <= 1, "in [0, 1]");
-}
-void atLeastOne(const std::string& w, const char* f, int v) {
-  check(w, f, v, v >= 1, ">= 1");
+void checkValue(const std::string& where, const ParamInfo& info, const std::string& field, double v) {
+  if (!info.inRange(v) || !std::isfinite(v))
+    fail(where, field, "must be " + info.rangeText() + " (got " + formatValue(v) + ")");
 }
 
 }  // namespace
 
 void validateParams(const Params& p, const std::string& where) {
-  const FluidParams& f = p.fluid;
-  positive(where, "params.fluid.particle_mass", f.particle_mass);
-  positive(where, "params.fluid.particle_radius", f.particle_radius);
-  positive(where, "params.fluid.smoothing_radius", f.smoothing_radius);
-  positive(where, "params.fluid.rest_density", f.rest_density);
-  nonNegative(where, "params.fluid.gas_constant", f.gas_constant);
-  nonNegative(where, "params.fluid.viscosity", f.viscosity);
-  check(where, "params.fluid.time_step", f.time_step, f.time_step > 0 && f.time_step <= 0.1f, "in (0, 0.1]");
-  static const char* kGravity[3] = {"params.fluid.gravity[0]", "params.fluid.gravity[1]",
-                                    "params.fluid.gravity[2]"};
-  for (int i = 0; i < 3; ++i) check(where, kGravity[i], f.gravity[i], std::isfinite(f.gravity[i]), "finite");
-  check(where, "params.fluid.max_step_fraction", f.max_step_fraction,
-        f.max_step_fraction > 0 && f.max_step_fraction <= 1, "in (0, 1]");
-  check(where, "params.fluid.cfl", f.cfl, f.cfl > 0 && f.cfl <= 1, "in (0, 1]");
-  if (f.max_substeps < 1 || f.max_substeps > 1000)
-    throw Error((where.empty() ? std::string() : where + ": ") +
-                "params.fluid.max_substeps: must be in [1, 1000] (got " + std::to_string(f.max_substeps) +
-                ")");
-
-  const ControlParams& c = p.control;
-  positive(where, "params.control.radius", c.radius);
-  nonNegative(where, "params.control.attraction", c.attraction);
-  nonNegative(where, "params.control.velocity", c.velocity);
-  unitInterval(where, "params.control.feedback", c.feedback);
-  unitInterval(where, "params.control.gravity_compensation", c.gravity_compensation);
-  if (c.units != ControlForceUnits::Acceleration && c.units != ControlForceUnits::ForceDensity &&
-      c.units != ControlForceUnits::Force)
-    throw Error((where.empty() ? std::string() : where + ": ") +
-                "params.control.units: must be acceleration, force_density or force");
-
-  const ShapeMatchParams& s = p.shape;
-  unitInterval(where, "params.shape_matching.stiffness", s.stiffness);
-  positive(where, "params.shape_matching.time_step", s.time_step);
-  atLeastOne(where, "params.shape_matching.cluster_stride", s.cluster_stride);
-  atLeastOne(where, "params.shape_matching.cluster_half_width", s.cluster_half_width);
-  atLeastOne(where, "params.shape_matching.rotation_iterations", s.rotation_iterations);
-  unitInterval(where, "params.shape_matching.damping", s.damping);
+  Params& fields = const_cast<Params&>(p);  // the table's accessors only read here
+  for (const ParamInfo& info : paramTable()) {
+    void* f = info.field(fields);
+    switch (info.type) {
+      case ParamInfo::Type::Real:
+        checkValue(where, info, info.name(), *static_cast<const float*>(f));
+        break;
+      case ParamInfo::Type::Integer: {
+        const int v = *static_cast<const int*>(f);
+        if (!info.inRange(v))
+          fail(where, info.name(), "must be " + info.rangeText() + " (got " + std::to_string(v) + ")");
+        break;
+      }
+      case ParamInfo::Type::Vector:
+        for (int i = 0; i < 3; ++i)
+          checkValue(where, info, info.name() + "[" + std::to_string(i) + "]",
+                     static_cast<const float*>(f)[i]);
+        break;
+      case ParamInfo::Type::Units: {
+        const ControlForceUnits u = *static_cast<const ControlForceUnits*>(f);
+        if (u != ControlForceUnits::Acceleration && u != ControlForceUnits::ForceDensity &&
+            u != ControlForceUnits::Force)
+          fail(where, info.name(), "must be acceleration, force_density or force");
+        break;
+      }
+    }
+  }
+  // Work per step: every fluid step runs time_step / shape_matching.time_step
+  // shape-matching steps.
+  const double shape_steps = double(p.fluid.time_step) / double(p.shape.time_step);
+  if (shape_steps > kMaxShapeStepsPerStep)
+    fail(where, "params.shape_matching.time_step",
+         "must be at least params.fluid.time_step / " + formatValue(kMaxShapeStepsPerStep) + " = " +
+             formatValue(double(p.fluid.time_step) / kMaxShapeStepsPerStep) + " s (got " +
+             formatValue(p.shape.time_step) + " s, which would make " +
+             formatValue(std::ceil(shape_steps - 1e-3)) + " shape-matching steps per fluid step)");
+  const double clusters = p.shape.clustersPerParticle();
+  if (clusters > kMaxClustersPerParticle)
+    fail(where, "params.shape_matching.cluster_half_width",
+         formatValue(p.shape.cluster_half_width) + " voxels at cluster_stride " +
+             formatValue(p.shape.cluster_stride) + " puts every control particle in " +
+             formatValue(clusters) + " clusters; at most " + formatValue(kMaxClustersPerParticle) +
+             " (lower cluster_half_width or raise cluster_stride)");
 }
 
 }  // namespace ff

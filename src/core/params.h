@@ -65,6 +65,12 @@ struct ShapeMatchParams {
   // clusters. Rigid motion is untouched. Plain shape matching with stiffness
   // < 1 is an undamped oscillator; this makes it converge.
   float damping = 0.1f;
+
+  // The most clusters one control particle belongs to: the lattice points
+  // (multiples of the stride) within half_width voxels, per axis
+  // floor(2 half_width / stride) + 1. Work and memory of shape matching grow
+  // with it.
+  double clustersPerParticle() const;
 };
 
 struct Params {
@@ -76,8 +82,10 @@ struct Params {
 // Named parameter sets. Throws ff::Error for an unknown name.
 Params presetParams(const std::string& name);
 
-// Checks every field for NaN, Inf and out-of-range values. `where` prefixes the
-// message (e.g. the scene file). Throws ff::Error naming the field.
+// Checks every field for NaN, Inf and values outside its range in the
+// parameter table (core/param_table.h), and that the shape-matching clock
+// makes at most kMaxShapeStepsPerStep steps per fluid step. `where` prefixes
+// the message (e.g. the scene file). Throws ff::Error naming the field.
 void validateParams(const Params& p, const std::string& where);
 
 }  // namespace ff

@@ -16,6 +16,8 @@
 
 #include "core/embedded.h"
 #include "core/error.h"
+#include "core/param_table.h"
+#include "core/resource_limits.h"
 #include "core/text_file.h"
 #include "scene/scene.h"
 
@@ -58,6 +60,9 @@ struct Reader {
   }
 
   const json& object(const json& j, const std::string& path, std::initializer_list<const char*> keys) const {
+    return object(j, path, std::vector<const char*>(keys));
+  }
+  const json& object(const json& j, const std::string& path, const std::vector<const char*>& keys) const {
     if (!j.is_object()) fail(path, "must be an object");
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool known = false;
@@ -132,66 +137,53 @@ struct Reader {
   }
 };
 
+void readUnits(const Reader& r, const json& j, const std::string& path, ControlForceUnits& out) {
+  std::string u = r.string(j, path);
+  if (u == "acceleration")
+    out = ControlForceUnits::Acceleration;
+  else if (u == "force_density")
+    out = ControlForceUnits::ForceDensity;
+  else if (u == "force")
+    out = ControlForceUnits::Force;
+  else
+    r.fail(path, "must be \"acceleration\", \"force_density\" or \"force\" (got '" + u + "')");
+}
+
+// Reads the keys given under "params" (the parameter table lists them); the
+// ranges are checked afterwards by validateParams.
 void readParams(const Reader& r, const json& j, const std::string& base, Params& p) {
-  r.object(j, base, {"fluid", "control", "shape_matching"});
-  if (j.contains("fluid")) {
-    const std::string path = child(base, "fluid");
-    const json& f =
-        r.object(j["fluid"], path,
-                 {"particle_mass", "particle_radius", "smoothing_radius", "rest_density", "gas_constant",
-                  "viscosity", "time_step", "gravity", "max_step_fraction", "cfl", "max_substeps"});
-    FluidParams& o = p.fluid;
-    r.opt(f, path, "particle_mass", o.particle_mass);
-    r.opt(f, path, "particle_radius", o.particle_radius);
-    r.opt(f, path, "smoothing_radius", o.smoothing_radius);
-    r.opt(f, path, "rest_density", o.rest_density);
-    r.opt(f, path, "gas_constant", o.gas_constant);
-    r.opt(f, path, "viscosity", o.viscosity);
-    r.opt(f, path, "time_step", o.time_step);
-    r.opt(f, path, "max_step_fraction", o.max_step_fraction);
-    r.opt(f, path, "cfl", o.cfl);
-    r.opt(f, path, "max_substeps", o.max_substeps);
-    if (f.contains("gravity")) {
-      Vec3 g = r.vec3(f["gravity"], child(path, "gravity"));
-      for (int i = 0; i < 3; ++i) o.gravity[i] = g[i];
+  std::vector<const char*> groups;
+  for (const std::string& g : paramGroups()) groups.push_back(g.c_str());
+  r.object(j, base, groups);
+  for (const std::string& group : paramGroups()) {
+    if (!j.contains(group)) continue;
+    const std::string path = child(base, group);
+    std::vector<const char*> keys;
+    for (const ParamInfo& info : paramTable())
+      if (group == info.group) keys.push_back(info.key);
+    const json& obj = r.object(j[group], path, keys);
+    for (const ParamInfo& info : paramTable()) {
+      if (group != info.group || !obj.contains(info.key)) continue;
+      const json& v = obj[info.key];
+      const std::string key = child(path, info.key);
+      void* field = info.field(p);
+      switch (info.type) {
+        case ParamInfo::Type::Real:
+          *static_cast<float*>(field) = r.real(v, key);
+          break;
+        case ParamInfo::Type::Integer:
+          *static_cast<int*>(field) = r.integer(v, key);
+          break;
+        case ParamInfo::Type::Vector: {
+          const Vec3 g = r.vec3(v, key);
+          for (int i = 0; i < 3; ++i) static_cast<float*>(field)[i] = g[i];
+          break;
+        }
+        case ParamInfo::Type::Units:
+          readUnits(r, v, key, *static_cast<ControlForceUnits*>(field));
+          break;
+      }
     }
-  }
-  if (j.contains("control")) {
-    const std::string path = child(base, "control");
-    const json& c =
-        r.object(j["control"], path,
-                 {"radius", "attraction", "velocity", "feedback", "gravity_compensation", "units"});
-    ControlParams& o = p.control;
-    r.opt(c, path, "radius", o.radius);
-    r.opt(c, path, "attraction", o.attraction);
-    r.opt(c, path, "velocity", o.velocity);
-    r.opt(c, path, "feedback", o.feedback);
-    r.opt(c, path, "gravity_compensation", o.gravity_compensation);
-    if (c.contains("units")) {
-      std::string u = r.string(c["units"], child(path, "units"));
-      if (u == "acceleration")
-        o.units = ControlForceUnits::Acceleration;
-      else if (u == "force_density")
-        o.units = ControlForceUnits::ForceDensity;
-      else if (u == "force")
-        o.units = ControlForceUnits::Force;
-      else
-        r.fail(child(path, "units"),
-               "must be \"acceleration\", \"force_density\" or \"force\" (got '" + u + "')");
-    }
-  }
-  if (j.contains("shape_matching")) {
-    const std::string path = child(base, "shape_matching");
-    const json& s = r.object(
-        j["shape_matching"], path,
-        {"stiffness", "time_step", "cluster_stride", "cluster_half_width", "rotation_iterations", "damping"});
-    ShapeMatchParams& o = p.shape;
-    r.opt(s, path, "stiffness", o.stiffness);
-    r.opt(s, path, "time_step", o.time_step);
-    r.opt(s, path, "cluster_stride", o.cluster_stride);
-    r.opt(s, path, "cluster_half_width", o.cluster_half_width);
-    r.opt(s, path, "rotation_iterations", o.rotation_iterations);
-    r.opt(s, path, "damping", o.damping);
   }
 }
 
@@ -300,6 +292,7 @@ void resolveMesh(const Reader& r, TargetSpec& t, const std::string& path, const 
 
 TargetSpec readTarget(const Reader& r, const json& j, const std::string& path, const std::string& base_dir) {
   TargetSpec t;
+  t.origin = r.source + ": " + path;
   if (j.is_string()) {
     std::string s = j.get<std::string>();
     if (analyticKind(s, t.kind)) return t;
@@ -497,6 +490,7 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   if (root.contains("duration")) {
     scene.duration = r.number(root["duration"], "duration");
     r.positive(scene.duration, "duration");
+    checkRunLength(scene.duration, scene.params.fluid.time_step, source + ": duration");
   }
   if (root.contains("container")) scene.container = readContainer(r, root["container"]);
 
@@ -504,8 +498,13 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
     r.fail("fluid", "required key is missing (a scene needs at least one fluid block)");
   const json& fluid = r.array(root["fluid"], "fluid");
   if (fluid.empty()) r.fail("fluid", "must hold at least one fluid block");
-  for (size_t i = 0; i < fluid.size(); ++i)
+  double particles = 0.0;
+  for (size_t i = 0; i < fluid.size(); ++i) {
     scene.fluid.push_back(readBlock(r, fluid[i], element("fluid", i), scene));
+    const FluidBlockDesc& b = scene.fluid.back();
+    particles += double(b.dims[0]) * double(b.dims[1]) * double(b.dims[2]);
+    checkFluidCount(particles, source, child(element("fluid", i), "dims"));
+  }
 
   if (root.contains("region")) scene.region = readRegion(r, root["region"], "region");
   if (root.contains("target") && root.contains("schedule"))

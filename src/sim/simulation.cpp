@@ -10,6 +10,7 @@
 #include "control/placement.h"
 #include "control/shape_matching.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "scene/scene_state.h"
 
 namespace ff {
@@ -19,11 +20,48 @@ namespace {
 float defaultVoxelSize(const FluidParams& fp) {
   return 1.55f * fp.restSpacing();
 }
+// The most control particles per controlled fluid particle: a voxel of a
+// quarter of the fluid's rest spacing. Denser control particles carry no more
+// information about the shape than the fluid can follow, only work.
+constexpr double kMaxControlPerFluid = 64.0;
+
+// Before voxelising: how many control particles the spec asks for, against
+// the fluid that will fill them.
+void checkControlCount(const TargetSpec& spec, long fluid, double fluid_volume, float default_voxel) {
+  const double volume = spec.volume > 0.0f ? double(spec.volume) : fluid_volume;
+  const double voxel = spec.voxel_size > 0.0f ? double(spec.voxel_size) : double(default_voxel);
+  const double controls =
+      spec.control_count > 0 ? double(spec.control_count) : volume / (voxel * voxel * voxel);
+  if (!(controls <= kMaxControlPerFluid * double(fluid))) {
+    const char* key = spec.control_count > 0   ? "control_count"
+                      : spec.voxel_size > 0.0f ? "voxel_size"
+                                               : "volume";
+    std::ostringstream os;
+    os.precision(3);
+    os << spec.where(key) << ": about " << controls << " control particles for " << fluid
+       << " controlled fluid particles; at most " << kMaxControlPerFluid << " per fluid particle";
+    throw Error(os.str());
+  }
+}
+
+// The clusters of `controls` control particles must fit in memory.
+void checkClusterMemory(const ShapeMatchParams& sm, size_t controls, const std::string& where) {
+  const double per = sm.clustersPerParticle();
+  std::ostringstream what;
+  what.precision(3);
+  what << double(controls) << " control particles in up to " << per << " clusters each";
+  checkMemory(double(controls) * (per * kBytesPerClusterMembership + kBytesPerControlParticle), where,
+              "params.shape_matching.cluster_half_width", what.str());
+}
+
 }  // namespace
 
 Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend)
     : scene_(std::move(scene)), backend_(std::move(backend)) {
   validateParams(scene_.params, scene_.source);
+  double particles = 0.0;  // in double: dims of scenes made in code are not checked yet
+  for (const FluidBlockDesc& b : scene_.fluid) particles += double(b.dims[0]) * b.dims[1] * b.dims[2];
+  checkFluidCount(particles, scene_.source, "fluid");
   backend_->init(scene_.params, scene_.container, makeFluid(scene_));
   applySchedule();
 }
@@ -215,7 +253,9 @@ void Simulation::setTarget(const TargetSpec& spec) {
   range(pz, lo.z(), hi.z());
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
+  checkControlCount(spec, count, volume, defaultVoxelSize(fp));
   target_ = &cache_.get(spec, volume, defaultVoxelSize(fp));
+  checkClusterMemory(scene_.params.shape, target_->reference.size(), scene_.source);
   target_volume_ = volume;
   target_spec_ = spec;
   has_target_ = true;
@@ -239,6 +279,7 @@ void Simulation::setRegion(const RegionDesc& region) {
 
 void Simulation::setParams(const Params& params) {
   validateParams(params, "parameters");
+  if (target_) checkClusterMemory(params.shape, target_->reference.size(), "parameters");
   scene_.params = params;
   backend_->setParams(params);
 }

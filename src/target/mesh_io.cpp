@@ -10,8 +10,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <sstream>
+#include <unordered_map>
 
 #include "core/error.h"
+#include "core/warning.h"
 #include "target/mesh_file_checks.h"
 
 namespace ff {
@@ -168,7 +170,24 @@ TriangleMesh loadMesh(const std::string& path) {
   if (mesh.triangles.empty()) fail(path, "no triangles in the file");
   dropUnusedVertices(mesh);
   checkNotDegenerate(mesh, path);
+  if (const size_t open = openEdgeCount(mesh))
+    warn(path + ": the mesh is not watertight (" + std::to_string(open) +
+         " edges belong to one triangle only); using it anyway: voxels are inside where 2 of 3 axis rays "
+         "say so, which tolerates small holes");
   return mesh;
+}
+
+size_t openEdgeCount(const TriangleMesh& mesh) {
+  std::unordered_map<uint64_t, int> uses;
+  uses.reserve(mesh.triangles.size() * 3);
+  for (const auto& tri : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint64_t a = uint32_t(tri[k]), b = uint32_t(tri[(k + 1) % 3]);
+      ++uses[a < b ? (a << 32 | b) : (b << 32 | a)];
+    }
+  size_t open = 0;
+  for (const auto& e : uses) open += e.second == 1;
+  return open;
 }
 
 double meshVolume(const TriangleMesh& mesh) {

@@ -25,6 +25,9 @@ TriangleMesh loadMesh(const std::string& path);
 double meshVolume(const TriangleMesh& mesh);
 
 // Axis-aligned bounds of the vertices used by triangles (zero if none).
+// Edges that only one triangle uses (0 for a watertight mesh).
+size_t openEdgeCount(const TriangleMesh& mesh);
+
 void meshBounds(const TriangleMesh& mesh, Vec3& lo, Vec3& hi);
 
 }  // namespace ff

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "target/analytic_shapes.h"
 #include "target/euler_rotation.h"
 #include "target/mesh_io.h"
@@ -39,11 +40,72 @@ const char* kindName(TargetKind kind) {
   return "?";
 }
 
-std::string where(const TargetSpec& spec) {
-  std::string s = "target '" + spec.label() + "'";
-  if (spec.kind == TargetKind::Mesh)
-    s += " (" + (spec.resolved_path.empty() ? spec.mesh : spec.resolved_path) + ")";
-  return s;
+std::string where(const TargetSpec& spec, const std::string& key = "") {
+  return spec.where(key);
+}
+
+// The key that sets the voxel size.
+std::string voxelKey(const TargetSpec& spec) {
+  return spec.voxel_size > 0.0f ? "voxel_size" : spec.control_count > 0 ? "control_count" : "";
+}
+
+// The key that sets the proportions of the shape.
+std::string shapeKey(const TargetSpec& spec) {
+  switch (spec.kind) {
+    case TargetKind::Mesh:
+      return "mesh";
+    case TargetKind::Box:
+      return "size";
+    case TargetKind::Torus:
+      return "minor";
+    case TargetKind::Capsule:
+      return "radius";
+    case TargetKind::Sphere:
+      break;
+  }
+  return "";
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(v == std::floor(v) && std::abs(v) < 1e9 ? 10 : 3);
+  os << v;
+  return os.str();
+}
+
+// Before voxelising: the voxel grid and the control particles must fit. A
+// voxel grid has at most 4096 voxels per axis, so a shape more than 4096
+// times longer than thick cannot have an inside voxel; and a shape thinner
+// than the voxel has none, so the control_count search shrinks the voxel to
+// the shape's thickness.
+void checkVoxelWork(const TargetSpec& spec, const Vec3& lo, const Vec3& hi, double volume,
+                    double default_voxel) {
+  const Eigen::Vector3d extent = (hi - lo).cast<double>();
+  const double thinnest = extent.minCoeff(), ratio = extent.maxCoeff() / thinnest;
+  const std::string shape = fmt(extent[0]) + " x " + fmt(extent[1]) + " x " + fmt(extent[2]) + " m";
+  if (!(ratio <= kMaxVoxelsPerAxis))
+    throw Error(where(spec, shapeKey(spec)) + ": the shape (" + shape + " at volume " + fmt(volume) +
+                " m^3) is " + fmt(ratio) + " times longer than thick; at most " + fmt(kMaxVoxelsPerAxis) +
+                " (the voxels per axis of a voxel grid)");
+  const double voxel = spec.voxel_size > 0.0f   ? double(spec.voxel_size)
+                       : spec.control_count > 0 ? std::cbrt(volume / double(spec.control_count))
+                                                : default_voxel;
+  const double v = spec.control_count > 0 ? std::min(voxel, thinnest) : voxel;
+  double voxels = 1.0, longest = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    voxels *= std::ceil(extent[a] / v) + 3.0;
+    longest = std::max(longest, std::ceil(extent[a] / v) + 3.0);
+  }
+  const std::string key = v < voxel ? shapeKey(spec) : voxelKey(spec);
+  if (!(voxels <= kMaxVoxels) || !(longest <= kMaxVoxelsPerAxis))
+    throw Error(where(spec, key) + ": voxels of " + fmt(v) + " m over a shape of " + shape + " make " +
+                fmt(voxels) + " voxels (" + fmt(longest) + " along the longest axis), over the limit of " +
+                fmt(kMaxVoxels) + " (" + fmt(kMaxVoxelsPerAxis) + " per axis)");
+  checkMemory(voxels * kBytesPerVoxel, where(spec, key), "",
+              "voxels of " + fmt(v) + " m over a shape of " + shape + " (" + fmt(voxels) + " voxels)");
+  const double controls = volume / (voxel * voxel * voxel);
+  checkMemory(controls * kBytesPerControlParticle, where(spec, key), "",
+              "about " + fmt(controls) + " control particles");
 }
 
 // The shape, ready to voxelise: its bounding box centred at the origin and
@@ -58,12 +120,17 @@ struct PreparedShape {
 
 PreparedShape prepareMesh(const TargetSpec& spec, double volume) {
   for (int a = 0; a < 3; ++a) {
-    if (!std::isfinite(spec.rotation_deg[a])) throw Error(where(spec) + ": rotation_deg must be finite");
+    if (!std::isfinite(spec.rotation_deg[a])) throw Error(where(spec, "rotation") + ": must be finite");
   }
   const std::string path = spec.resolved_path.empty() ? resolveMeshPath(spec.mesh, "") : spec.resolved_path;
   PreparedShape out;
   out.is_mesh = true;
-  out.mesh = loadMesh(path);
+  try {
+    out.mesh = loadMesh(path);
+  } catch (const Error& e) {
+    if (spec.origin.empty()) throw;
+    throw Error(where(spec, "mesh") + ": " + e.what());  // e names the mesh file
+  }
   TriangleMesh& mesh = out.mesh;
 
   // Rotate about the bounding-box centre, then centre the rotated box at the origin.
@@ -134,6 +201,13 @@ std::string TargetSpec::label() const {
   return base.empty() ? name : base;
 }
 
+std::string TargetSpec::where(const std::string& key) const {
+  if (!origin.empty()) return key.empty() ? origin : origin + "." + key;
+  std::string s = "target '" + label() + "'";
+  if (kind == TargetKind::Mesh) s += " (" + (resolved_path.empty() ? mesh : resolved_path) + ")";
+  return key.empty() ? s : s + ": " + key;
+}
+
 std::string TargetSpec::cacheKey(float volume_used) const {
   std::ostringstream key;
   key.precision(9);
@@ -188,15 +262,17 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
     throw Error(where(spec) + ": give either control_count or voxel_size, not both");
   }
   if (spec.control_count > 0 && size_t(spec.control_count) < kMinInside) {
-    throw Error(where(spec) + ": control_count must be at least " + std::to_string(kMinInside));
+    throw Error(where(spec, "control_count") + ": must be at least " + std::to_string(kMinInside) + " (got " +
+                std::to_string(spec.control_count) + ")");
   }
   const PreparedShape shape =
       spec.kind == TargetKind::Mesh ? prepareMesh(spec, volume) : prepareAnalytic(spec, volume);
+  checkVoxelWork(spec, shape.lo, shape.hi, volume, default_voxel_size);
 
   TargetShape target;
   target.label = spec.label();
   target.shape_volume = shape.volume;
-  const std::string context = where(spec);
+  const std::string context = where(spec, voxelKey(spec));
   auto voxelize = [&shape, &context](float voxel, const Vec3& shift) {
     try {
       return voxelizePrepared(shape, voxel, shift);
@@ -223,8 +299,9 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
   }
   if (target.reference.size() < kMinInside) {
     std::ostringstream msg;
-    msg << where(spec) << ": only " << target.reference.size() << " voxel(s) inside at voxel size " << g.voxel
-        << " (at least " << kMinInside << " needed): the shape (volume " << volume
+    msg << where(spec, voxelKey(spec)) << ": only " << target.reference.size()
+        << " voxel(s) inside at voxel size " << g.voxel << " (at least " << kMinInside
+        << " needed): the shape (volume " << volume
         << ") is too small for the voxel size; use a smaller voxel_size or a control_count";
     throw Error(msg.str());
   }
@@ -268,6 +345,7 @@ const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_vo
 std::string resolveMeshPath(const std::string& name, const std::string& scene_dir) {
   auto isFile = [](const fs::path& p) {
     std::error_code ec;
+    if (fs::is_directory(p, ec)) throw Error(p.string() + ": is a folder, not a mesh file");
     return fs::is_regular_file(p, ec);
   };
   if (name.empty()) throw Error("mesh path is empty");

@@ -27,9 +27,16 @@ struct TargetSpec {
   int control_count = 0;    // > 0: choose the voxel size so the reference count is within 3% of this
   float voxel_size = 0.0f;  // > 0: this voxel size (control_count must then be 0)
   float volume = 0.0f;      // > 0: scale to this volume instead of the fluid's rest volume
+  // Where the spec was written, for messages: "FILE: KEY.PATH" (e.g.
+  // "scene.json: schedule[1].target"); empty for targets made in code.
+  std::string origin;
 
   // A short human-readable name: "sphere", "bunny.obj", ...
   std::string label() const;
+  // Where a message about `key` (e.g. "control_count"; "" for the whole spec)
+  // points: "FILE: PATH.key" for a spec from a file, else
+  // "target 'LABEL' (MESH): key".
+  std::string where(const std::string& key = "") const;
   // A key that identifies the voxelisation (used by the cache).
   std::string cacheKey(float volume_used) const;
 };
@@ -65,7 +72,9 @@ struct TargetShape {
 
 // Builds the target: loads/creates the shape, scales it to `volume` (or
 // spec.volume), voxelises it and places the reference particles.
-// Throws ff::Error naming the file (for meshes) and the problem.
+// Throws ff::Error naming the spec's origin (file and key), the mesh file and
+// the problem. Before voxelising, the voxel grid and the control particles are
+// estimated and refused over the limits of core/resource_limits.h.
 TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
 
 // Keeps every voxelisation made during a run, so that switching back to a
@@ -95,9 +104,15 @@ class TargetCache {
   size_t voxelisations_ = 0;
 };
 
+// The most voxels one voxel grid may have, in all and along one axis
+// (makeVoxelGrid enforces them; buildTarget estimates before voxelising).
+constexpr double kMaxVoxels = 2.0e8;
+constexpr double kMaxVoxelsPerAxis = 4096.0;
+
 // Resolves a mesh path: as given if absolute; else relative to `scene_dir`
 // (when not empty); else along FLOWFORM_MESH_PATH (colon-separated folders).
-// Throws ff::Error listing every place tried.
+// Throws ff::Error listing every place tried, or saying that the path is a
+// folder.
 std::string resolveMeshPath(const std::string& name, const std::string& scene_dir);
 
 }  // namespace ff

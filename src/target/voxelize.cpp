@@ -94,7 +94,7 @@ VoxelGrid makeVoxelGrid(const Vec3& lo, const Vec3& hi, float voxel, const Vec3&
     const double extent = std::max(0.0, double(hi[a]) - double(lo[a]));
     const double count = std::ceil(extent / voxel) + 2.0 + (shift[a] != 0.0f ? 1.0 : 0.0);
     total *= count;
-    if (!(count <= 4096.0) || !(total <= 2.0e8)) {
+    if (!(count <= kMaxVoxelsPerAxis) || !(total <= kMaxVoxels)) {
       std::ostringstream msg;
       msg << "voxel size " << voxel << " is too small for a shape " << (hi - lo).transpose()
           << " across: the voxel grid would be too large";

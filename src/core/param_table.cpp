@@ -1,0 +1,104 @@
+// param_table.cpp - the ranges and meanings of all run parameters.
+//
+// The ranges are wide enough for any physical scene at the scale of the paper
+// (a few litres of liquid in a box of tens of centimetres up to metres) and
+// for the parameter sweeps of docs/, and narrow enough that nothing overflows
+// or runs away: counts that multiply work (iterations, cluster sizes,
+// substeps) are bounded, and every real is finite. Memory-dependent limits
+// (particle counts, voxel counts) are in core/resource_limits.h instead.
+#include "core/param_table.h"
+
+#include <cstdio>
+
+namespace ff {
+
+namespace {
+
+using T = ParamInfo::Type;
+
+#define FF_FIELD(member) [](Params& p) -> void* { return &p.member; }
+
+std::string fmt(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::string ParamInfo::name() const {
+  return std::string("params.") + group + "." + key;
+}
+
+std::string ParamInfo::rangeText() const {
+  return std::string("in ") + (min_open ? "(" : "[") + fmt(min) + ", " + fmt(max) + "]";
+}
+
+bool ParamInfo::inRange(double v) const {
+  return (min_open ? v > min : v >= min) && v <= max;
+}
+
+const std::vector<ParamInfo>& paramTable() {
+  static const std::vector<ParamInfo> table = {
+      // group, key, type, min, max, min_open, doc, field
+      {"fluid", "particle_mass", T::Real, 0.0, 1e3, true, "mass of one fluid particle (kg)",
+       FF_FIELD(fluid.particle_mass)},
+      {"fluid", "particle_radius", T::Real, 0.0, 10.0, true,
+       "radius a particle is drawn and exported with (m); no effect on the physics",
+       FF_FIELD(fluid.particle_radius)},
+      {"fluid", "smoothing_radius", T::Real, 1e-5, 10.0, false, "SPH smoothing radius h (m)",
+       FF_FIELD(fluid.smoothing_radius)},
+      {"fluid", "rest_density", T::Real, 1e-3, 1e6, false, "rest density rho0 (kg/m^3)",
+       FF_FIELD(fluid.rest_density)},
+      {"fluid", "gas_constant", T::Real, 0.0, 1e6, false, "k in the equation of state p = k (rho - rho0)",
+       FF_FIELD(fluid.gas_constant)},
+      {"fluid", "viscosity", T::Real, 0.0, 1e4, false, "viscosity mu (Pa s)", FF_FIELD(fluid.viscosity)},
+      {"fluid", "time_step", T::Real, 1e-6, 0.1, false, "one step of simulated time (s)",
+       FF_FIELD(fluid.time_step)},
+      {"fluid", "gravity", T::Vector, -1e3, 1e3, false, "gravity, each component (m/s^2)",
+       FF_FIELD(fluid.gravity)},
+      {"fluid", "max_step_fraction", T::Real, 0.0, 1.0, true,
+       "velocity limit: the most a particle moves in one substep, as a fraction of h",
+       FF_FIELD(fluid.max_step_fraction)},
+      {"fluid", "cfl", T::Real, 0.0, 1.0, true, "CFL number of the automatic substeps", FF_FIELD(fluid.cfl)},
+      {"fluid", "max_substeps", T::Integer, 1, 1000, false, "the most CFL substeps per step",
+       FF_FIELD(fluid.max_substeps)},
+
+      {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
+       FF_FIELD(control.radius)},
+      {"control", "attraction", T::Real, 0.0, 1e6, false, "w_a, weight of the attraction force (eq. 4)",
+       FF_FIELD(control.attraction)},
+      {"control", "velocity", T::Real, 0.0, 1e6, false, "w_v, weight of the velocity force (eq. 6)",
+       FF_FIELD(control.velocity)},
+      {"control", "feedback", T::Real, 0.0, 1.0, false,
+       "fluid feedback: how far a control particle's velocity moves towards the fluid's per step",
+       FF_FIELD(control.feedback)},
+      {"control", "gravity_compensation", T::Real, 0.0, 1.0, false,
+       "share of gravity the control particles carry for the fluid they hold",
+       FF_FIELD(control.gravity_compensation)},
+      {"control", "units", T::Units, 0.0, 0.0, false,
+       "how eq. 4 and 6 act: \"acceleration\", \"force_density\" or \"force\"", FF_FIELD(control.units)},
+
+      {"shape_matching", "stiffness", T::Real, 0.0, 1.0, false, "alpha of eq. 7", FF_FIELD(shape.stiffness)},
+      {"shape_matching", "time_step", T::Real, 1e-6, 1.0, false,
+       "the shape-matching clock (s); at most 1000 shape-matching steps per fluid step",
+       FF_FIELD(shape.time_step)},
+      {"shape_matching", "cluster_stride", T::Integer, 1, 64, false,
+       "a cluster is centred on every N-th reference voxel", FF_FIELD(shape.cluster_stride)},
+      {"shape_matching", "cluster_half_width", T::Integer, 1, 64, false,
+       "a cluster holds the control particles within N voxels (a cube)", FF_FIELD(shape.cluster_half_width)},
+      {"shape_matching", "rotation_iterations", T::Integer, 1, 100, false,
+       "warm-started quaternion iterations per shape-matching step", FF_FIELD(shape.rotation_iterations)},
+      {"shape_matching", "damping", T::Real, 0.0, 1.0, false,
+       "how far a control particle's velocity moves towards its clusters' mean per step",
+       FF_FIELD(shape.damping)},
+  };
+  return table;
+}
+
+const std::vector<std::string>& paramGroups() {
+  static const std::vector<std::string> groups = {"fluid", "control", "shape_matching"};
+  return groups;
+}
+
+}  // namespace ff

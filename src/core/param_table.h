@@ -1,0 +1,45 @@
+// param_table.h - the single table of run parameters: every key of the scene's
+// "params" object with its type, its sane range and what it means. The scene
+// reader, the viewer script reader and validateParams all go through it, so a
+// range is written once (here, in param_table.cpp).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/params.h"
+
+namespace ff {
+
+struct ParamInfo {
+  enum class Type {
+    Real,     // one float
+    Integer,  // one int
+    Vector,   // three floats (a JSON array of 3 numbers)
+    Units,    // ControlForceUnits, written as a string
+  };
+  const char* group;  // "fluid", "control" or "shape_matching"
+  const char* key;    // the key inside the group, e.g. "time_step"
+  Type type;
+  // Allowed range (every component for Vector). min_open excludes min itself.
+  double min, max;
+  bool min_open;
+  const char* doc;  // one line: what the parameter means, with its unit
+  // The field in a Params (a float, an int, a float[3] or a ControlForceUnits).
+  void* (*field)(Params&);
+
+  std::string name() const;  // "params.GROUP.KEY"
+  // "in [MIN, MAX]" or "in (MIN, MAX]"
+  std::string rangeText() const;
+  bool inRange(double v) const;
+};
+
+// Every parameter, group by group, in the order the docs list them.
+const std::vector<ParamInfo>& paramTable();
+// The names of the groups ("fluid", "control", "shape_matching").
+const std::vector<std::string>& paramGroups();
+
+// The most shape-matching steps one fluid step may make
+// (params.fluid.time_step / params.shape_matching.time_step).
+constexpr double kMaxShapeStepsPerStep = 1000.0;
+
+}  // namespace ff

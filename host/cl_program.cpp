@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -134,9 +135,7 @@ cl::Program buildProgramSource(const ClContext& cl, const std::string& source) {
   cl::Program program =
       clGuard("creating the kernel program", [&] { return cl::Program(cl.context(), source); });
   const std::string options = kernelBuildOptions(cl.info());
-  try {
-    program.build(std::vector<cl::Device>{cl.device()}, options.c_str());
-  } catch (const cl::Error& e) {
+  auto buildLog = [&] {
     std::string log;
     try {
       log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(cl.device());
@@ -144,8 +143,22 @@ cl::Program buildProgramSource(const ClContext& cl, const std::string& source) {
       log = "(the device gave no build log)";
     }
     while (!log.empty() && (log.back() == '\n' || log.back() == '\0')) log.pop_back();
+    return log;
+  };
+  try {
+    program.build(std::vector<cl::Device>{cl.device()}, options.c_str());
+  } catch (const cl::Error& e) {
+    const std::string log = buildLog();
     throw Error("OpenCL: building the kernels for " + cl.info().name + " with \"" + options +
                 "\": " + clErrorText(e.what(), e.err()) + "; " + shortBuildLog(log));
+  }
+  // FLOWFORM_CL_BUILD_LOG=FILE: the device, the options and the compiler's log
+  // of a successful build too (bench/gpu_check.sh keeps it).
+  if (const char* path = std::getenv("FLOWFORM_CL_BUILD_LOG"); path && *path) {
+    std::ofstream f(path, std::ios::app);
+    if (!f) throw Error(std::string("FLOWFORM_CL_BUILD_LOG: cannot write ") + path);
+    f << "device: " << cl.info().summary() << "\noptions: " << options << "\nbuild log:\n"
+      << buildLog() << "\n\n";
   }
   return program;
 }

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <string>
 
+#include "temp_dir.h"
+
 namespace fftest {
 
 struct CliResult {
@@ -37,13 +39,10 @@ inline CliResult runFlowform(const std::string& args, const std::string& env = "
                   "' " + args);
 }
 
-// A fresh, empty folder in the temp directory, unique to this process.
+// A fresh, empty folder in the temp directory, unique to this process and
+// removed when it exits.
 inline std::filesystem::path freshTempDir(const std::string& name) {
-  namespace fs = std::filesystem;
-  fs::path d = fs::temp_directory_path() / ("flowform_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return scratchDir(name);
 }
 
 }  // namespace fftest

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <memory>
 
-#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "ff_sph.h"
+#include "sim/simulation.h"
 
 namespace {
 

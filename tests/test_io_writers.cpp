@@ -17,22 +17,15 @@
 #include "core/error.h"
 #include "io/metrics_csv.h"
 #include "io/ply_writer.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-class TempDir {
- public:
-  TempDir() : path_(fs::temp_directory_path() / ("flowform_io_test_" + std::to_string(getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+// A self-cleaning folder for one test.
+struct TempDir : fftest::TempDir {
+  TempDir() : fftest::TempDir("io") {}
 };
 
 std::string readAll(const std::string& path) {

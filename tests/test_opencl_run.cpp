@@ -12,9 +12,9 @@
 #include <string>
 
 #include "core/error.h"
-#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "host/backend_factory.h"
+#include "sim/simulation.h"
 
 namespace {
 

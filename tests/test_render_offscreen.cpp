@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "cli_run.h"
-#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
 #include "render/camera.h"
 #include "render/frame_data.h"
 #include "render/offscreen_context.h"
 #include "render/scene_renderer.h"
+#include "sim/simulation.h"
 
 namespace {
 

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/params.h"
 #include "scene/scene.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -359,8 +360,7 @@ TEST_F(SceneJson, MalformedJsonNamesLine) {
 }
 
 TEST_F(SceneJson, LoadSceneNamesTheFile) {
-  fs::path dir = fs::temp_directory_path() / ("flowform_scene_test_" + std::to_string(getpid()));
-  fs::create_directories(dir);
+  const fs::path dir = fftest::scratchDir("scene_json");
   std::string path = (dir / "broken.json").string();
   json j = baseScene();
   j["fluid"][0]["dimz"] = 3;
@@ -448,7 +448,8 @@ TEST(Params, ValidateRejectsNanAndRanges) {
   EXPECT_NE(message(p).find("params.fluid.gravity[2]"), std::string::npos) << message(p);
   p = ff::Params{};
   p.fluid.particle_mass = 0.0f;
-  EXPECT_NE(message(p).find("params.fluid.particle_mass: must be in (0, 1000] (got 0)"), std::string::npos) << message(p);
+  EXPECT_NE(message(p).find("params.fluid.particle_mass: must be in (0, 1000] (got 0)"), std::string::npos)
+      << message(p);
   p = ff::Params{};
   p.fluid.max_step_fraction = 1.5f;
   EXPECT_NE(message(p).find("params.fluid.max_step_fraction"), std::string::npos) << message(p);
@@ -457,7 +458,8 @@ TEST(Params, ValidateRejectsNanAndRanges) {
   EXPECT_NE(message(p).find("params.shape_matching.stiffness"), std::string::npos) << message(p);
   p = ff::Params{};
   p.shape.cluster_half_width = 0;
-  EXPECT_NE(message(p).find("params.shape_matching.cluster_half_width: must be in [1, 64] (got 0)"), std::string::npos)
+  EXPECT_NE(message(p).find("params.shape_matching.cluster_half_width: must be in [1, 64] (got 0)"),
+            std::string::npos)
       << message(p);
   p = ff::Params{};
   p.control.radius = -1.0f;

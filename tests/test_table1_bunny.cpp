@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <memory>
 
-#include "sim/simulation.h"
 #include "cpu/backend_cpu.h"
+#include "sim/simulation.h"
 
 namespace {
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -14,6 +15,8 @@
 #include "core/error.h"
 #include "target/mesh_io.h"
 #include "target/target_shape.h"
+#include "temp_dir.h"
+#include "test_meshes.h"
 
 namespace fs = std::filesystem;
 
@@ -24,11 +27,11 @@ class MeshIoTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("ff_mesh_io_" + std::to_string(getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    temp_ = std::make_unique<fftest::TempDir>(std::string("mesh_io_") + info->name());
+    dir_ = temp_->path();
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override { temp_.reset(); }
+  std::unique_ptr<fftest::TempDir> temp_;
   std::string write(const std::string& name, const std::string& content) const {
     const std::string path = (dir_ / name).string();
     std::ofstream(path, std::ios::binary) << content;
@@ -193,7 +196,7 @@ TEST_F(MeshIoTest, InsideOutMeshHasNegativeSignedVolume) {
 }
 
 TEST(MeshIoShared, BunnyMatchesAnIndependentReading) {
-  const std::string path = FF_SHARED_MESHES "/bunny.obj";
+  FF_MESH_OR_SKIP(path, "bunny.obj");
   size_t vertices = 0, faces = 0;
   const double volume = objVolumeByHand(path, &vertices, &faces);
   const ff::TriangleMesh mesh = ff::loadMesh(path);
@@ -359,7 +362,7 @@ class MeshPathEnv {
 }  // namespace
 
 TEST(MeshPath, AbsolutePathIsTakenAsIs) {
-  const std::string path = FF_SHARED_MESHES "/teapot.obj";
+  FF_MESH_OR_SKIP(path, "teapot.obj");
   EXPECT_TRUE(
       fs::equivalent(ff::resolveMeshPath(fs::absolute(path).string(), "/nonexistent_ff_scene"), path));
 }
@@ -382,9 +385,11 @@ TEST_F(MeshIoTest, RelativePathIsFoundInTheSceneFolderFirst) {
 }
 
 TEST(MeshPath, RelativePathIsFoundAlongFlowformMeshPath) {
-  MeshPathEnv env("/nonexistent_ff_a::/nonexistent_ff_b:" FF_SHARED_MESHES);
+  FF_MESH_OR_SKIP(dragon, "dragon.obj");
+  const std::string folder = fs::path(dragon).parent_path().string();
+  MeshPathEnv env("/nonexistent_ff_a::/nonexistent_ff_b:" + folder);
   const std::string found = ff::resolveMeshPath("dragon.obj", "/nonexistent_ff_scene");
-  EXPECT_TRUE(fs::equivalent(found, FF_SHARED_MESHES "/dragon.obj")) << found;
+  EXPECT_TRUE(fs::equivalent(found, dragon)) << found;
 }
 
 TEST(MeshPath, ErrorListsEveryFolderTried) {

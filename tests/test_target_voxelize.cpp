@@ -18,6 +18,8 @@
 #include "target/mesh_io.h"
 #include "target/target_shape.h"
 #include "target/voxelize.h"
+#include "temp_dir.h"
+#include "test_meshes.h"
 
 namespace fs = std::filesystem;
 using ff::TargetKind;
@@ -40,11 +42,11 @@ TargetSpec analyticSpec(TargetKind kind) {
   return spec;
 }
 
-TargetSpec meshSpec(const std::string& file) {
+TargetSpec meshSpec(const std::string& file, const std::string& path) {
   TargetSpec spec;
   spec.kind = TargetKind::Mesh;
   spec.mesh = file;
-  spec.resolved_path = std::string(FF_SHARED_MESHES) + "/" + file;
+  spec.resolved_path = path;
   return spec;
 }
 
@@ -116,10 +118,6 @@ std::vector<size_t> facesSeenByAllAxes(const ObjText& obj) {
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key[a] > key[b]; });
   return order;
-}
-
-std::string tempPath(const std::string& name) {
-  return (fs::temp_directory_path() / ("ff_voxelize_" + std::to_string(getpid()) + "_" + name)).string();
 }
 
 }  // namespace
@@ -364,7 +362,8 @@ TEST(TargetVoxelize, RaysThroughVerticesAndEdgesCountOnce) {
 }
 
 TEST(TargetVoxelize, BunnyVoxelVolumeWithin2PercentOfMeshVolume) {
-  TargetSpec bunny = meshSpec("bunny.obj");
+  FF_MESH_OR_SKIP(bunny_path, "bunny.obj");
+  TargetSpec bunny = meshSpec("bunny.obj", bunny_path);
   bunny.control_count = 3197;
   bunny.volume = 0.003f;
   const TargetShape t = ff::buildTarget(bunny, 1.0, 0.0f);
@@ -381,7 +380,8 @@ TEST(TargetVoxelize, BunnyVoxelVolumeWithin2PercentOfMeshVolume) {
 TEST(TargetVoxelize, MeshRotationTurnsTheShape) {
   // The teapot is 6.4 x 3.1 x 4 (x, y, z); rotated 90 degrees about z its
   // long side runs along y.
-  TargetSpec teapot = meshSpec("teapot.obj");
+  FF_MESH_OR_SKIP(teapot_path, "teapot.obj");
+  TargetSpec teapot = meshSpec("teapot.obj", teapot_path);
   teapot.voxel_size = 0.008f;
   const TargetShape plain = ff::buildTarget(teapot, kFluidVolume, 0.0f);
   teapot.rotation_deg = ff::Vec3(0.0f, 0.0f, 90.0f);
@@ -413,7 +413,8 @@ std::ostream& operator<<(std::ostream& out, const Table1Case& c) {
 class TargetTable1 : public ::testing::TestWithParam<Table1Case> {};
 
 TEST_P(TargetTable1, ControlCountWithin3Percent) {
-  TargetSpec spec = meshSpec(GetParam().file);
+  FF_MESH_OR_SKIP(path, GetParam().file);
+  TargetSpec spec = meshSpec(GetParam().file, path);
   spec.control_count = GetParam().count;
   const TargetShape t = ff::buildTarget(spec, kFluidVolume, 0.0f);
   EXPECT_LE(std::abs(double(t.reference.size()) - GetParam().count), 0.03 * GetParam().count)
@@ -443,13 +444,13 @@ namespace {
 // axis's parity flips whole columns through the damage, far from it; the
 // majority vote may only differ right next to the damage (voxels two of whose
 // rays cross it), and the volume stays right.
-void expectDamageTolerated(const ObjText& original, const ObjText& damaged,
+void expectDamageTolerated(const std::string& closed_path, const ObjText& original, const ObjText& damaged,
                            const std::vector<size_t>& damaged_faces, const std::string& name) {
-  const std::string damaged_path = tempPath(name);
+  const fftest::TempDir dir("voxelize");
+  const std::string damaged_path = (dir / name).string();
   writeObj(damaged, damaged_path);
-  const ff::TriangleMesh closed = ff::loadMesh(FF_SHARED_MESHES "/bunny_lowres.obj");
+  const ff::TriangleMesh closed = ff::loadMesh(closed_path);
   const ff::TriangleMesh broken = ff::loadMesh(damaged_path);
-  fs::remove(damaged_path);
 
   const double volume = ff::meshVolume(closed);
   ff::Vec3 lo, hi;
@@ -498,27 +499,31 @@ void expectDamageTolerated(const ObjText& original, const ObjText& damaged,
 }  // namespace
 
 TEST(TargetVoxelize, SmallHoleIsTolerated) {
-  const ObjText closed = readObj(FF_SHARED_MESHES "/bunny_lowres.obj");
+  FF_MESH_OR_SKIP(path, "bunny_lowres.obj");
+  const ObjText closed = readObj(path);
+  ASSERT_GT(closed.f.size(), 2u) << path;
   const std::vector<size_t> order = facesSeenByAllAxes(closed);
   const std::vector<size_t> removed = {std::max(order[0], order[1]), std::min(order[0], order[1])};
   ObjText holed = closed;
   for (size_t f : removed) holed.f.erase(holed.f.begin() + long(f));  // two faces, the later one first
-  expectDamageTolerated(closed, holed, removed, "holed_bunny.obj");
+  expectDamageTolerated(path, closed, holed, removed, "holed_bunny.obj");
 }
 
 TEST(TargetVoxelize, DuplicatedFaceIsTolerated) {
-  const ObjText closed = readObj(FF_SHARED_MESHES "/bunny_lowres.obj");
+  FF_MESH_OR_SKIP(path, "bunny_lowres.obj");
+  const ObjText closed = readObj(path);
+  ASSERT_GT(closed.f.size(), 2u) << path;
   const std::vector<size_t> order = facesSeenByAllAxes(closed);
   ObjText doubled = closed;
   doubled.f.push_back(closed.f[order[0]]);  // a third face on three edges: non-manifold
   doubled.f.push_back(closed.f[order[1]]);
-  expectDamageTolerated(closed, doubled, {order[0], order[1]}, "duplicated_bunny.obj");
+  expectDamageTolerated(path, closed, doubled, {order[0], order[1]}, "duplicated_bunny.obj");
 }
 
 // ---- specs and the cache -------------------------------------------------------------
 
 TEST(TargetSpecs, LabelsAndCacheKeys) {
-  TargetSpec mesh = meshSpec("bunny.obj");
+  TargetSpec mesh = meshSpec("bunny.obj", "/meshes/bunny.obj");
   mesh.mesh = "meshes/bunny.obj";
   EXPECT_EQ(mesh.label(), "bunny.obj");
   EXPECT_EQ(analyticSpec(TargetKind::Torus).label(), "torus");
@@ -534,7 +539,7 @@ TEST(TargetSpecs, LabelsAndCacheKeys) {
   variants[5] = mesh;
   for (const TargetSpec& v : variants) EXPECT_NE(v.cacheKey(0.003f), base.cacheKey(0.003f));
   TargetSpec other_mesh = mesh;
-  other_mesh.resolved_path = FF_SHARED_MESHES "/teapot.obj";
+  other_mesh.resolved_path = "/meshes/teapot.obj";
   EXPECT_NE(other_mesh.cacheKey(0.003f), mesh.cacheKey(0.003f));
 }
 

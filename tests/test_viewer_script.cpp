@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "temp_dir.h"
 #include "viewer/script.h"
 
 namespace {
@@ -18,10 +19,7 @@ using ff::viewer::ScriptAction;
 using Kind = ff::viewer::ScriptAction::Kind;
 
 fs::path tempDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("flowform_script_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fftest::scratchDir("script_" + name);
 }
 
 // The message of the ff::Error that parsing `text` as "demo.json" throws ("" if none).

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "temp_dir.h"
 #include "viewer/target_catalog.h"
 #include "viewer/viewer_session.h"
 
@@ -20,10 +21,7 @@ using ff::viewer::TargetChoice;
 using ff::viewer::ViewerSession;
 
 fs::path tempDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("flowform_session_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return fftest::scratchDir("session_" + name);
 }
 
 void touch(const fs::path& p) {

@@ -10,9 +10,9 @@
 #include <random>
 #include <vector>
 
-#include "grid/uniform_grid.h"
 #include "ff_rotation.h"
 #include "ff_sph.h"
+#include "grid/uniform_grid.h"
 #include "metrics/iou.h"
 #include "target/target_shape.h"
 

@@ -14,8 +14,8 @@
 #include <memory>
 #include <string>
 
-#include "sim/simulation.h"
 #include "host/backend_factory.h"
+#include "sim/simulation.h"
 #ifndef FF_NO_OPENCL
 #include "host/cl_context.h"
 #endif
@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
       {"control_scale", [](ff::Backend& b, const ff::Params&) { b.computeControlScale(); }},
       {"control_forces",
        [](ff::Backend& b, const ff::Params& p) { b.applyControlForces(p.fluid.time_step); }},
+      {"pressure", [](ff::Backend& b, const ff::Params& p) { b.solvePressure(p.fluid.time_step); }},
       // dt = 0: the fluid does not move, so every iteration times the same state.
       {"integrate", [](ff::Backend& b, const ff::Params&) { b.integrate(0.0f); }},
       // One shape-matching step per call (its clock's step).

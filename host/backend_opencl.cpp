@@ -11,12 +11,14 @@ OpenClBackend::Impl::Impl(int device_index)
   reorder = makeKernel(program, "grid_reorder_fluid", ctx);
   density = makeKernel(program, "density", ctx);
   forces = makeKernel(program, "forces", ctx);
+  pressure_wcsph = makeKernel(program, "pressure_wcsph", ctx);
   integrate = makeKernel(program, "integrate", ctx);
   control_scale = makeKernel(program, "control_scale", ctx);
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
   forces_lanes = makeKernel(program, "forces_lanes", ctx, kLaneGroupCap);
+  pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
   control_forces_lanes = makeKernel(program, "control_forces_lanes", ctx, kLaneGroupCap);
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
   sm_particles = makeKernel(program, "sm_particles", ctx);
@@ -187,14 +189,33 @@ void OpenClBackend::computeForces() {
     const cl_float4 gravity = f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f);
     if (lanes_)
       launch(d.queue(), d.forces_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
-             d.rho.get(), d.p.get(), cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
-             f.smoothing_radius, f.particle_mass, f.viscosity, gravity, boxLo(box_), boxHi(box_), d.ax.get(),
-             d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+             d.rho.get(), cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
+             f.smoothing_radius, f.particle_mass, f.viscosity, gravity, d.ax.get(), d.ay.get(), d.az.get(),
+             d.bad.get(), cl_int(tag));
     else
-      launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), d.p.get(),
-             cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass,
-             f.viscosity, gravity, boxLo(box_), boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
+      launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), cl_uint(n_),
+             g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass, f.viscosity,
+             gravity, d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    endPhase();
+  });
+}
+
+void OpenClBackend::solvePressure(float dt) {
+  (void)dt;  // WCSPH's pressure does not depend on the substep
+  clGuard("phase 'pressure'", [&] {
+    Impl& d = *d_;
+    const int tag = beginPhase(Phase::Pressure);
+    const FluidParams& f = params_.fluid;
+    const DeviceGrid& g = d.fluid_h;
+    if (lanes_)
+      launch(d.queue(), d.pressure_wcsph_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(),
+             cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius,
+             f.particle_mass, boxLo(box_), boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
              cl_int(tag));
+    else
+      launch(d.queue(), d.pressure_wcsph, n_, d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(), cl_uint(n_),
+             g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass, boxLo(box_),
+             boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
     endPhase();
   });
 }

@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
-#include "sim/backend.h"
-#include "sim/nonfinite_log.h"
 #include "ff_rotation.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"
 #include "host/device_grid.h"
 #include "metrics/iou.h"
+#include "sim/backend.h"
+#include "sim/nonfinite_log.h"
 
 namespace ff {
 
@@ -42,6 +42,7 @@ class OpenClBackend : public Backend {
   void computeForces() override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
+  void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
   StepMetrics computeMetrics() override;

@@ -18,9 +18,9 @@ struct OpenClBackend::Impl {
   ClContext ctx;
   cl::Program program;
   GridBuilder grids;
-  ClKernel reorder, density, forces, integrate;
+  ClKernel reorder, density, forces, pressure_wcsph, integrate;
   ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
-  ClKernel density_lanes, forces_lanes, control_forces_lanes;  // 8 particles per work-item
+  ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes, control_forces_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;                                        // 8 voxels per work-item
   ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou;
 

@@ -18,13 +18,7 @@ inline void density_finish(uint i, float xi, float yi, float zi, float sum, floa
                            __global float* p_out, __global int* bad, int tag) {
   const float pos[3] = {xi, yi, zi}, lo[3] = {box_lo.x, box_lo.y, box_lo.z},
               hi[3] = {box_hi.x, box_hi.y, box_hi.z};
-  float fluid_side = 1.0f;  // the kernel's share on the fluid side of every wall within h
-  for (int d = 0; d < 3; ++d) {
-    const float dlo = pos[d] - lo[d], dhi = hi[d] - pos[d];
-    if (dlo < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dlo, h, coef);
-    if (dhi < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dhi, h, coef);
-  }
-  const float rho = mass * sum + rho0 * ff_combine_wall_fractions(fluid_side);
+  const float rho = mass * sum + rho0 * ff_wall_density_share(pos, lo, hi, h, coef);
   const float p = ff_pressure(rho, rho0, gas_k);
   rho_out[i] = rho;
   p_out[i] = p;

@@ -63,8 +63,9 @@ std::vector<Row> readCsv(const fs::path& p, std::string* header) {
   return rows;
 }
 
-const std::vector<std::string> kPhases = {"grid",           "density",   "forces",         "control_scale",
-                                          "control_forces", "integrate", "shape_matching", "metrics"};
+const std::vector<std::string> kPhases = {"grid",          "density",        "forces",
+                                          "control_scale", "control_forces", "pressure",
+                                          "integrate",     "shape_matching", "metrics"};
 
 TEST(BenchStats, MedianMinMaxMatchASortedCopy) {
   std::mt19937 rng(7);

@@ -110,13 +110,15 @@ TEST(Checkpoint, SigintLeavesALoadableCheckpointAndCompleteFiles) {
   const std::string path = log.substr(at + 11, log.find('\n', at) - at - 11);
   ASSERT_TRUE(fs::exists(path)) << path;
   EXPECT_FALSE(fs::exists(path + ".part"));
-  // Every metrics row is complete: 10 values and a line end.
+  // Every metrics row is complete: as many values as the header and a line end.
   const std::string text = slurp(csv);
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text.back(), '\n');
   const auto rows = lines(text);
   ASSERT_GE(rows.size(), 20u);
-  for (const std::string& row : rows) EXPECT_EQ(std::count(row.begin(), row.end(), ','), 9) << row;
+  const auto commas = std::count(rows.front().begin(), rows.front().end(), ',');
+  EXPECT_GE(commas, 9) << rows.front();  // at least the columns of docs/METRICS.md's first ten
+  for (const std::string& row : rows) EXPECT_EQ(std::count(row.begin(), row.end(), ','), commas) << row;
   // The checkpoint is at the last row's step.
   const long step = std::stol(rows.back().substr(0, rows.back().find(',')));
   EXPECT_NE(

@@ -34,8 +34,8 @@ TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
   Result r = run("run --backend cpu --steps 3 --metrics '" + (d / "m.csv").string() + "' --export '" +
                  d.string() + "' --export-every 3 --format ply");
   ASSERT_EQ(r.code, 0) << r.out;
-  for (const char* phase : {"grid", "density", "forces", "control_scale", "control_forces", "integrate",
-                            "shape_matching", "metrics", "total"})
+  for (const char* phase : {"grid", "density", "forces", "control_scale", "control_forces", "pressure",
+                            "integrate", "shape_matching", "metrics", "total"})
     EXPECT_NE(r.out.find(phase), std::string::npos) << phase << "\n" << r.out;
   std::ifstream csv(d / "m.csv");
   std::string header;

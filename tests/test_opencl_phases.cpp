@@ -179,7 +179,7 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant) {
   expectClose("density", cpu.fluid().rho, rho);
   expectClose("pressure", cpu.fluid().p, pr);
 
-  // Pressure + viscosity + wall + gravity.
+  // The non-pressure accelerations: viscosity + gravity.
   cpu.computeForces(), ocl.computeForces();
   ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   std::vector<float> ax, ay, az;
@@ -216,6 +216,14 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant) {
   expectClose("with control ax", cpu.fluid().ax, ax);
   expectClose("with control ay", cpu.fluid().ay, ay);
   expectClose("with control az", cpu.fluid().az, az);
+
+  // The pressure solve (WCSPH: symmetric pressure force and the walls'), added last.
+  cpu.solvePressure(dt), ocl.solvePressure(dt);
+  ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
+  ocl.readAccel(ax, ay, az);
+  expectClose("with pressure ax", cpu.fluid().ax, ax);
+  expectClose("with pressure ay", cpu.fluid().ay, ay);
+  expectClose("with pressure az", cpu.fluid().az, az);
 
   // Integration.
   cpu.integrate(dt), ocl.integrate(dt);

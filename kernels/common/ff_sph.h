@@ -111,4 +111,40 @@ FF_FN float ff_wall_pressure_accel(float d, float h, float p, float rho) {
   return FF_FMAX(p, 0.0f) * ff_spiky_wall_slice(d, h) / rho;
 }
 
+/* ---------------------------------------------------------------------------
+ * Per-particle wall bodies, shared by the OpenMP loops and the kernels. pos,
+ * lo and hi are the particle and the container's corners; the walls are taken
+ * x, y, z, low then high (the summation order of both backends).
+ * ------------------------------------------------------------------------- */
+
+/* The walls' share of the density, in units of rho0: 1 - prod_w (1 - F_w). */
+FF_FN float ff_wall_density_share(const float* pos, const float* lo, const float* hi, float h, float coef) {
+  float fluid_side = 1.0f; /* the kernel's share on the fluid side of every wall within h */
+  for (int d = 0; d < 3; ++d) {
+    const float dlo = pos[d] - lo[d], dhi = hi[d] - pos[d];
+    if (dlo < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dlo, h, coef);
+    if (dhi < h) fluid_side *= 1.0f - ff_poly6_wall_fraction(dhi, h, coef);
+  }
+  return ff_combine_wall_fractions(fluid_side);
+}
+
+/* WCSPH pressure acceleration of particle i from its pressure sums ps (the
+ * pair terms of ff_pressure_pair) and the walls' mirrored pressure. */
+FF_FN void ff_wcsph_pressure_accel(const float* pos, const float* lo, const float* hi, float h, float pi,
+                                   float rhoi, const float* ps, float* a) {
+  for (int d = 0; d < 3; ++d) a[d] = ps[d] / rhoi;
+  for (int d = 0; d < 3; ++d) {
+    const float dlo = pos[d] - lo[d], dhi = hi[d] - pos[d];
+    if (dlo < h) a[d] += ff_wall_pressure_accel(dlo, h, pi, rhoi);
+    if (dhi < h) a[d] += -1.0f * ff_wall_pressure_accel(dhi, h, pi, rhoi);
+  }
+}
+
+/* Viscosity (the sums vs of ff_visc_pair, times mu / rho_i) plus gravity: the
+ * non-pressure acceleration every solver starts from. */
+FF_FN void ff_visc_gravity_accel(const float* vs, float mu, float rhoi, const float* gravity, float* a) {
+  const float inv = mu / rhoi;
+  for (int d = 0; d < 3; ++d) a[d] = vs[d] * inv + gravity[d];
+}
+
 #endif /* FF_SPH_H */

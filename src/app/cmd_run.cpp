@@ -88,8 +88,9 @@ int runScene(const RunOptions& o) {
 
   MetricsCsv csv;
   const std::vector<std::string> columns = {
-      "step",          "time",           "iou",           "coverage",    "max_speed",
-      "density_error", "kinetic_energy", "control_count", "max_density", "substeps"};
+      "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
+      "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
+      "solver_capped"};
   if (!o.metrics.empty() && first > 0)
     csv.resume(o.metrics, columns, double(first));
   else if (!o.metrics.empty())
@@ -110,7 +111,8 @@ int runScene(const RunOptions& o) {
     progress.update(s + 1 - first, m.time);
     if (csv.isOpen() && sim.metricsFresh())
       csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
-               double(m.control_count), m.max_density, double(m.substeps)});
+               double(m.control_count), m.max_density, double(m.substeps), double(m.solver_iterations),
+               m.max_density_error, double(m.solver_capped)});
     if (exporter) exportFrameIfDue(sim, *exporter);
     if (print) {
       progress.interrupt();

@@ -20,8 +20,8 @@ try:
 except ImportError:
     sys.exit(3)
 
-PHASES = ["grid", "density", "forces", "control_scale", "control_forces", "integrate", "shape_matching",
-          "metrics"]
+PHASES = ["grid", "density", "forces", "control_scale", "control_forces", "pressure", "integrate",
+          "shape_matching", "metrics"]
 
 
 def read(path):

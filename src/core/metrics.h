@@ -15,6 +15,12 @@ struct StepMetrics {
   int substeps = 1;             // fluid substeps taken in this step
   double kinetic_energy = 0.0;  // J
   long control_count = 0;
+  // The pressure solver (0 for WCSPH, which does not iterate): iterations of
+  // its solves over the step's substeps, and how many solves stopped at
+  // params.fluid.max_iterations before reaching their tolerance.
+  long solver_iterations = 0;
+  long solver_capped = 0;
+  double max_density_error = 0.0;  // max (rho - rho0) / rho0, the largest compression
 };
 
 }  // namespace ff

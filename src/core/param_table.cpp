@@ -57,6 +57,8 @@ const std::vector<ParamInfo>& paramTable() {
        FF_FIELD(fluid.time_step)},
       {"fluid", "gravity", T::Vector, -1e3, 1e3, false, "gravity, each component (m/s^2)",
        FF_FIELD(fluid.gravity)},
+      {"fluid", "solver", T::Solver, 0.0, 0.0, false, "the pressure solver by name: \"wcsph\"",
+       FF_FIELD(fluid.solver)},
       {"fluid", "max_step_fraction", T::Real, 0.0, 1.0, true,
        "velocity limit: the most a particle moves in one substep, as a fraction of h",
        FF_FIELD(fluid.max_step_fraction)},

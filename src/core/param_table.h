@@ -16,6 +16,7 @@ struct ParamInfo {
     Integer,  // one int
     Vector,   // three floats (a JSON array of 3 numbers)
     Units,    // ControlForceUnits, written as a string
+    Solver,   // PressureSolverKind, written as its name (solverName)
   };
   const char* group;  // "fluid", "control" or "shape_matching"
   const char* key;    // the key inside the group, e.g. "time_step"
@@ -24,7 +25,7 @@ struct ParamInfo {
   double min, max;
   bool min_open;
   const char* doc;  // one line: what the parameter means, with its unit
-  // The field in a Params (a float, an int, a float[3] or a ControlForceUnits).
+  // The field in a Params (a float, an int, a float[3], a ControlForceUnits or a PressureSolverKind).
   void* (*field)(Params&);
 
   std::string name() const;  // "params.GROUP.KEY"

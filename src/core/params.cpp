@@ -29,6 +29,19 @@ double ShapeMatchParams::clustersPerParticle() const {
   return per_axis * per_axis * per_axis;
 }
 
+const char* solverName(PressureSolverKind k) {
+  switch (k) {
+    case PressureSolverKind::Wcsph:
+      return "wcsph";
+  }
+  return "?";
+}
+
+PressureSolverKind solverByName(const std::string& name) {
+  if (name == "wcsph") return PressureSolverKind::Wcsph;
+  throw Error("params.fluid.solver: must be \"wcsph\" (got \"" + name + "\")");
+}
+
 Params presetParams(const std::string& name) {
   // The paper's appendix values; params.h holds them as the defaults.
   if (name == "paper") return Params{};
@@ -75,6 +88,10 @@ void validateParams(const Params& p, const std::string& where) {
         for (int i = 0; i < 3; ++i)
           checkValue(where, info, info.name() + "[" + std::to_string(i) + "]",
                      static_cast<const float*>(f)[i]);
+        break;
+      case ParamInfo::Type::Solver:
+        if (*static_cast<const PressureSolverKind*>(f) != PressureSolverKind::Wcsph)
+          fail(where, info.name(), "must be \"wcsph\"");
         break;
       case ParamInfo::Type::Units: {
         const ControlForceUnits u = *static_cast<const ControlForceUnits*>(f);

@@ -14,6 +14,15 @@ enum class ControlForceUnits {
   Force,         // dv/dt = (f_a + f_v) / m_e, a force on the particle
 };
 
+// The pressure solver (params.fluid.solver; by name in scenes, solverName).
+// Each backend owns its implementation (src/cpu/pressure_solver.h).
+enum class PressureSolverKind {
+  Wcsph,  // "wcsph": p = k (rho - rho0), Mueller et al. 2003
+};
+const char* solverName(PressureSolverKind k);
+// The solver called `name`; throws ff::Error "params.fluid.solver: ..." for another.
+PressureSolverKind solverByName(const std::string& name);
+
 struct FluidParams {
   float particle_mass = 0.0002f;
   float particle_radius = 0.0059f;  // used for rendering and export only
@@ -32,6 +41,7 @@ struct FluidParams {
   // Last safeguard: no particle moves more than this fraction of h in one
   // substep (a velocity limit).
   float max_step_fraction = 0.5f;
+  PressureSolverKind solver = PressureSolverKind::Wcsph;
 
   float restVolume() const { return particle_mass / rest_density; }
   float restSpacing() const;  // cube root of the rest volume

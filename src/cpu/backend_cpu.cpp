@@ -10,7 +10,7 @@
 
 namespace ff {
 
-CpuBackend::CpuBackend(int threads) : threads_(threads), solver_(std::make_unique<WcsphSolver>()) {
+CpuBackend::CpuBackend(int threads) : threads_(threads) {
   if (threads_ > 0) omp_set_num_threads(threads_);
 }
 
@@ -33,6 +33,8 @@ void CpuBackend::init(const Params& params, const ContainerDesc& box, const Flui
 
 void CpuBackend::setParams(const Params& params) {
   params_ = params;
+  if (!solver_ || solver_->name() != solverName(params.fluid.solver))
+    solver_ = makeCpuPressureSolver(params.fluid.solver);
   controller_.setParams(params.control, params.shape);
 }
 
@@ -63,6 +65,7 @@ FluidView CpuBackend::view() const {
 void CpuBackend::buildGrid() {
   log_.begin(Phase::Grid);
   buildFluidGrid(fluid_, params_.fluid.smoothing_radius, box_);
+  solver_->reorder(fluid_.grid.order());
 }
 
 void CpuBackend::computeDensity() {
@@ -72,7 +75,12 @@ void CpuBackend::computeDensity() {
 
 void CpuBackend::computeForces() {
   log_.begin(Phase::Forces);
-  if (!solver_->computeForces(fluid_, params_.fluid, box_, params_.fluid.time_step)) log_.fail();
+  if (!computeViscosityGravity(fluid_, params_.fluid)) log_.fail();
+}
+
+void CpuBackend::solvePressure(float dt) {
+  log_.begin(Phase::Pressure);
+  if (!solver_->solve(fluid_, params_.fluid, box_, dt)) log_.fail();
 }
 
 void CpuBackend::computeControlScale() {
@@ -104,7 +112,7 @@ Phase CpuBackend::firstNonFinite(int* substep) {
 }
 
 size_t CpuBackend::memoryBytes() const {
-  return fluid_.memoryBytes() + controller_.memoryBytes();
+  return fluid_.memoryBytes() + controller_.memoryBytes() + solver_->memoryBytes();
 }
 
 StepMetrics CpuBackend::computeMetrics() {
@@ -126,6 +134,9 @@ StepMetrics CpuBackend::computeMetrics() {
   m.kinetic_energy = ke;
   m.max_speed = std::sqrt(vmax2);
   m.max_density = rho_max;
+  const SolverStats st = solver_->take();
+  m.solver_iterations = st.iterations;
+  m.solver_capped = st.capped;
   if (controller_.active()) {
     const auto& sv = controller_.fields().s;
     double cov = 0.0;

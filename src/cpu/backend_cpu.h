@@ -3,11 +3,11 @@
 #include <memory>
 
 #include "control/controller.h"
-#include "sim/backend.h"
-#include "sim/nonfinite_log.h"
 #include "cpu/fluid_cpu.h"
 #include "cpu/pressure_solver.h"
 #include "metrics/iou.h"
+#include "sim/backend.h"
+#include "sim/nonfinite_log.h"
 
 namespace ff {
 
@@ -27,6 +27,7 @@ class CpuBackend : public Backend {
   void computeForces() override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
+  void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
   StepMetrics computeMetrics() override;
@@ -47,6 +48,7 @@ class CpuBackend : public Backend {
   // Direct access for tests and tools.
   CpuFluid& fluid() { return fluid_; }
   Controller& controller() { return controller_; }
+  PressureSolver& solver() { return *solver_; }
 
  private:
   FluidView view() const;

@@ -41,10 +41,14 @@ void buildFluidGrid(CpuFluid& f, float h, const ContainerDesc& box);
 // + the analytic wall term, and p = k (rho - rho0). False if a value is not finite.
 bool computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
 
-// Phase "forces" of WCSPH: a = the symmetric pressure force / rho_i with the
-// wall's, + viscosity (Laplacian of the viscosity kernel) + gravity, in one
-// neighbour walk. False if a value is not finite.
-bool computeWcsphForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
+// Phase "forces": the non-pressure accelerations every solver starts from,
+// a = viscosity (Laplacian of the viscosity kernel) + gravity. False if a
+// value is not finite.
+bool computeViscosityGravity(CpuFluid& f, const FluidParams& p);
+
+// Phase "pressure" of WCSPH: adds the symmetric pressure force / rho_i and the
+// wall's mirrored pressure to a. False if a value is not finite.
+bool addWcsphPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
 
 // Phase "integrate": symplectic Euler, velocity limit, container. False if a
 // value is not finite.

@@ -1,6 +1,8 @@
-// pressure_solver.h - the pressure solver sits behind this interface, so that
-// an iterative solver (DFSPH, PBF) can replace WCSPH without touching the
-// control code or the other phases.
+// pressure_solver.h - the OpenMP backend's pressure solvers, chosen by name
+// (params.fluid.solver). Each owns its per-particle arrays. A solver computes
+// the density phase (it may need more than rho there) and the pressure phase,
+// which adds the pressure accelerations to f.ax/ay/az after every other
+// acceleration of the substep, so an incompressible solver sees them.
 #pragma once
 #include <memory>
 #include <string>
@@ -9,15 +11,33 @@
 
 namespace ff {
 
+// What the solves of the substeps since the last take() did.
+struct SolverStats {
+  long iterations = 0;  // over every solve
+  long capped = 0;      // solves that stopped at max_iterations
+};
+
 class PressureSolver {
  public:
   virtual ~PressureSolver() = default;
   virtual std::string name() const = 0;
-  // Density (and pressure) from the current positions. False if a value is not finite.
+  // Phase "density": rho (and what the solver keeps per particle) from the
+  // current positions. False if a value is not finite.
   virtual bool computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) = 0;
-  // Sets the accelerations for a step of length dt: pressure, viscosity and
-  // gravity. False if a value is not finite.
-  virtual bool computeForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) = 0;
+  // Phase "pressure" for a substep of dt: adds the pressure accelerations to
+  // f.ax/ay/az and sets f.p. False if a value is not finite.
+  virtual bool solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) = 0;
+  // The grid phase reordered the particles by `order` (new k = old order[k]).
+  virtual void reorder(const std::vector<uint32_t>& order) { (void)order; }
+  virtual size_t memoryBytes() const { return 0; }
+  SolverStats take() {
+    SolverStats s = stats_;
+    stats_ = SolverStats();
+    return s;
+  }
+
+ protected:
+  SolverStats stats_;
 };
 
 // Weakly compressible SPH with p = k (rho - rho0) (Mueller et al. 2003).
@@ -27,9 +47,12 @@ class WcsphSolver : public PressureSolver {
   bool computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) override {
     return computeDensityPressure(f, p, box);
   }
-  bool computeForces(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float) override {
-    return computeWcsphForces(f, p, box);
+  bool solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float) override {
+    return addWcsphPressure(f, p, box);
   }
 };
+
+// The OpenMP implementation of a solver.
+std::unique_ptr<PressureSolver> makeCpuPressureSolver(PressureSolverKind kind);
 
 }  // namespace ff

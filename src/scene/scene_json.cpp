@@ -182,6 +182,15 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
         case ParamInfo::Type::Units:
           readUnits(r, v, key, *static_cast<ControlForceUnits*>(field));
           break;
+        case ParamInfo::Type::Solver: {
+          const std::string name = r.string(v, key);
+          try {
+            *static_cast<PressureSolverKind*>(field) = solverByName(name);
+          } catch (const Error&) {
+            r.fail(key, "must be \"wcsph\" (got '" + name + "')");
+          }
+          break;
+        }
       }
     }
   }

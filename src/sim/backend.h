@@ -18,9 +18,10 @@ namespace ff {
 enum class Phase : int {
   Grid = 0,       // neighbour grid by counting sort + reorder by cell
   Density,        // density and pressure
-  Forces,         // pressure, viscosity, wall boundary, gravity
+  Forces,         // non-pressure accelerations: viscosity, gravity
   ControlScale,   // s_i of the control particles and the fluid velocity around them
   ControlForces,  // attraction and velocity forces on the fluid
+  Pressure,       // the pressure solver named by params.fluid.solver (sees all the above)
   Integrate,      // fluid integration (symplectic Euler, container)
   ShapeMatching,  // clusters, goals, control-particle integration
   Metrics,        // iou, coverage, max speed, density error
@@ -43,9 +44,13 @@ class Backend {
 
   virtual void buildGrid() = 0;
   virtual void computeDensity() = 0;
+  // The non-pressure accelerations (viscosity, gravity): sets a.
   virtual void computeForces() = 0;
   virtual void computeControlScale() = 0;
   virtual void applyControlForces(float dt) = 0;
+  // The pressure solve for a substep of dt: adds the pressure accelerations to
+  // a, after every other acceleration, so an incompressible solver sees them.
+  virtual void solvePressure(float dt) = 0;
   virtual void integrate(float dt) = 0;
   virtual int shapeMatching(float dt) = 0;
   virtual StepMetrics computeMetrics() = 0;

@@ -151,6 +151,7 @@ void Simulation::step() {
     timed(Phase::Forces, [&] { backend_->computeForces(); });
     timed(Phase::ControlScale, [&] { backend_->computeControlScale(); });
     timed(Phase::ControlForces, [&] { backend_->applyControlForces(dt); });
+    timed(Phase::Pressure, [&] { backend_->solvePressure(dt); });
     timed(Phase::Integrate, [&] { backend_->integrate(dt); });
     timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
   }
@@ -171,6 +172,7 @@ void Simulation::step() {
   metrics_.step = step_;
   metrics_.time = time_;
   metrics_.substeps = n;
+  metrics_.max_density_error = (metrics_.max_density - double(fp.rest_density)) / double(fp.rest_density);
   for (double v : {metrics_.iou, metrics_.coverage, metrics_.max_speed, metrics_.density_error,
                    metrics_.kinetic_energy, metrics_.max_density})
     if (!std::isfinite(v))

@@ -1,0 +1,38 @@
+// lane_group.h - up to 8 consecutive grid-sorted particles as the lanes of
+// one neighbour walk (the OpenMP backend's counterpart of ff_lanes.h).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/fluid_state.h"
+#include "grid/uniform_grid.h"
+#include "parallel/simd8.h"
+
+namespace ff {
+
+// Unused lanes sit this far away: out of every neighbour's reach.
+constexpr float kLaneFar = 1.0e18f;
+
+// The neighbour ranges of one group, reused by each thread.
+inline std::vector<uint32_t>& threadSpans() {
+  static thread_local std::vector<uint32_t> spans;
+  return spans;
+}
+
+// The particles b .. e-1 (at most 8) as lanes, their bounding box, and the
+// grid ranges within `radius` of it.
+struct Group {
+  simd::f8 x, y, z;
+  int n;
+};
+inline void loadGroup(const FluidState& s, uint32_t b, uint32_t e, float radius, const UniformGrid& grid,
+                      Group& g, std::vector<uint32_t>& spans) {
+  g.n = int(e - b);
+  g.x = simd::loadN(&s.x[b], g.n, kLaneFar), g.y = simd::loadN(&s.y[b], g.n, kLaneFar);
+  g.z = simd::loadN(&s.z[b], g.n, kLaneFar);
+  const float lo[3] = {simd::hmin(g.x, g.n), simd::hmin(g.y, g.n), simd::hmin(g.z, g.n)};
+  const float hi[3] = {simd::hmax(g.x, g.n), simd::hmax(g.y, g.n), simd::hmax(g.z, g.n)};
+  grid.rangesNear(lo, hi, radius, spans);
+}
+
+}  // namespace ff

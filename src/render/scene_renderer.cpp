@@ -41,8 +41,6 @@ constexpr int kMaxGapTaps = 16;
 // Colours (rgb, alpha).
 constexpr float kWallColor[4] = {0.80f, 0.88f, 0.96f, 0.10f};
 constexpr float kEdgeColor[4] = {0.30f, 0.33f, 0.38f, 1.0f};
-constexpr float kRegionColor[4] = {1.0f, 0.55f, 0.10f, 1.0f};
-constexpr float kGhostColor[4] = {0.95f, 0.97f, 1.0f, 0.28f};
 
 // What every pass needs to know about the frame's camera and viewport.
 struct FrameView {

@@ -16,6 +16,14 @@ namespace ff::render {
 
 enum class FluidMode { ScreenSpace, Particles };
 
+// Overlay colours (rgb, alpha), also shown in the viewer's legend.
+inline constexpr float kRegionColor[4] = {1.0f, 0.55f, 0.10f, 1.0f};  // the controlled region's wireframe
+inline constexpr float kGhostColor[4] = {0.95f, 0.97f, 1.0f, 0.28f};  // the target ghost
+// Control particles by s_i (control_points.frag.glsl): filled, half, empty.
+inline constexpr float kControlFilledColor[3] = {0.10f, 0.80f, 0.25f};
+inline constexpr float kControlHalfColor[3] = {0.95f, 0.85f, 0.10f};
+inline constexpr float kControlEmptyColor[3] = {0.90f, 0.12f, 0.10f};
+
 struct RenderOptions {
   FluidMode mode = FluidMode::ScreenSpace;
   bool show_control = false;     // control particles coloured by s_i

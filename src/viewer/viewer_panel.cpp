@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "render/scene_renderer.h"
 #include "viewer/viewer_ui.h"
 
 namespace ff::viewer {
@@ -20,6 +21,33 @@ void errorText(const std::string& text) {
   ImGui::PushStyleColor(ImGuiCol_Text, kErrorColour);
   ImGui::TextWrapped("%s", text.c_str());
   ImGui::PopStyleColor();
+}
+
+// A small colour square and a wrapped text beside it.
+void legendLine(const char* id, const float* rgb, float alpha, const char* text) {
+  const float size = ImGui::GetTextLineHeight();
+  ImGui::ColorButton(id, ImVec4(rgb[0], rgb[1], rgb[2], alpha),
+                     ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoDragDrop, ImVec2(size, size));
+  ImGui::SameLine();
+  ImGui::TextWrapped("%s", text);
+}
+
+// A plot of values in [lo, hi] with its y values: the top and bottom of the
+// scale at the left edge, the last value in the title.
+void plotWithScale(const char* id, const char* title, const History& b, float lo, float hi, float height) {
+  char overlay[96];
+  const float last = b.latest();
+  std::snprintf(overlay, sizeof overlay, "%s  now %.3f", title, double(last));
+  ImGui::PlotLines(id, b.data(), int(b.count()), int(b.offset()), overlay, lo, hi,
+                   ImVec2(ImGui::GetContentRegionAvail().x, height));
+  const ImVec2 a = ImGui::GetItemRectMin(), z = ImGui::GetItemRectMax();
+  ImDrawList* d = ImGui::GetWindowDrawList();
+  const ImU32 c = ImGui::GetColorU32(kDimColour);
+  char label[32];
+  std::snprintf(label, sizeof label, "%.2g", double(hi));
+  d->AddText(ImVec2(a.x + 3.0f, a.y + 1.0f), c, label);
+  std::snprintf(label, sizeof label, "%.2g", double(lo));
+  d->AddText(ImVec2(a.x + 3.0f, z.y - ImGui::GetTextLineHeight() - 1.0f), c, label);
 }
 
 void runSection(ViewerUi& ui, ViewerSession& session) {
@@ -94,7 +122,18 @@ void regionSection(ViewerUi& ui, ViewerSession& session) {
   ImGui::SameLine();
   if (ImGui::Button("Scene's region")) applyRegion(ui, session, session.scene().region);
   ImGui::TextWrapped("region: %s", describeRegion(session.region()).c_str());
-  ImGui::Text("controlled fluid: %ld of %ld", session.sim().controlledCount(), session.scene().fluidCount());
+  ImGui::TextWrapped("controlled fluid: %ld of %ld particles", session.sim().controlledCount(),
+                     session.scene().fluidCount());
+  // Legend: which liquid is controlled, and what the overlays mean.
+  legendLine("##legend_region", render::kRegionColor, 1.0f,
+             session.region().kind == RegionDesc::Kind::All
+                 ? "controlled: all the liquid (no region box); it flows into the target"
+                 : "controlled: the liquid inside the orange region when the target was set; the rest flows "
+                   "freely");
+  legendLine("##legend_ghost", render::kGhostColor, 0.8f, "target shape (ghost)");
+  legendLine("##legend_filled", render::kControlFilledColor, 1.0f,
+             "control particle with liquid around (s = 0)");
+  legendLine("##legend_empty", render::kControlEmptyColor, 1.0f, "control particle still empty (s = 1)");
   switch (ui.mode) {
     case PickMode::BoxSelect:
       ImGui::TextColored(kDimColour, "Drag a rectangle over the fluid (Esc: back to camera)");
@@ -213,7 +252,11 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
 
 void timingSection(ViewerUi& ui, ViewerSession& session) {
   Simulation& sim = session.sim();
-  ImGui::TextWrapped("backend: %s (%s)", sim.backend().name().c_str(), sim.backend().device().c_str());
+  // The device names can be long: the backend on one line, its device wrapped below.
+  ImGui::Text("backend: %s", sim.backend().name().c_str());
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextColored(kDimColour, "%s", sim.backend().device().c_str());
+  ImGui::PopTextWrapPos();
   if (!session.backendNote().empty()) ImGui::TextColored(kDimColour, "%s", session.backendNote().c_str());
   const double fps = ui.frame_ms.value > 0.0 ? 1000.0 / ui.frame_ms.value : 0.0;
   ImGui::Text("FPS %.1f   frame %.1f ms", fps, ui.frame_ms.value);
@@ -253,14 +296,11 @@ void metricsSection(ViewerUi& ui, ViewerSession& session) {
   ImGui::Text("iou %.3f   coverage %.3f", m.iou, m.coverage);
   ImGui::Text("max speed %.3f m/s   density error %.3f", m.max_speed, m.density_error);
   const float seconds = float(ui.iou.count()) * session.params().fluid.time_step;
-  char overlay[64];
-  std::snprintf(overlay, sizeof overlay, "iou, last %.1f s", double(seconds));
-  const float w = ImGui::GetContentRegionAvail().x;
-  ImGui::PlotLines("##iou", ui.iou.data(), int(ui.iou.count()), int(ui.iou.offset()), overlay, 0.0f, 1.0f,
-                   ImVec2(w, 70.0f));
-  std::snprintf(overlay, sizeof overlay, "coverage, last %.1f s", double(seconds));
-  ImGui::PlotLines("##coverage", ui.coverage.data(), int(ui.coverage.count()), int(ui.coverage.offset()),
-                   overlay, 0.0f, 1.0f, ImVec2(w, 50.0f));
+  char title[64];
+  std::snprintf(title, sizeof title, "iou, last %.1f s", double(seconds));
+  plotWithScale("##iou", title, ui.iou, 0.0f, 1.0f, 70.0f);
+  std::snprintf(title, sizeof title, "coverage, last %.1f s", double(seconds));
+  plotWithScale("##coverage", title, ui.coverage, 0.0f, 1.0f, 50.0f);
 }
 
 void messagesSection(const ViewerUi& ui) {

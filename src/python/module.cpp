@@ -1,0 +1,257 @@
+// module.cpp - the Python module `flowform` (pybind11): load a scene from a
+// file or a dict, step and run, change the target, the region and the
+// parameters at any time, read the fluid, the control particles and the
+// metrics as NumPy arrays, export frames and write or resume checkpoints.
+// Every ff::Error becomes flowform.Error (a RuntimeError) with the same message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "host/backend_factory.h"
+#include "io/export_options.h"
+#include "io/frame_exporter.h"
+#include "scene/scene_json.h"
+#include "sim/checkpoint.h"
+#include "sim/export_frame.h"
+#include "sim/simulation.h"
+
+namespace py = pybind11;
+
+namespace {
+
+using ff::Error;
+using ff::Simulation;
+
+// Python value -> JSON text (through Python's json module), for the scene reader.
+std::string toJson(const py::handle& value) {
+  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+}
+
+std::string cwd() {
+  return py::module_::import("os").attr("getcwd")().cast<std::string>();
+}
+
+// An (n, 3) float32 array from three columns.
+py::array_t<float> columns3(const std::vector<float>& x, const std::vector<float>& y,
+                            const std::vector<float>& z) {
+  const py::ssize_t n = py::ssize_t(x.size());
+  py::array_t<float> a({n, py::ssize_t(3)});
+  auto m = a.mutable_unchecked<2>();
+  for (py::ssize_t i = 0; i < n; ++i) m(i, 0) = x[size_t(i)], m(i, 1) = y[size_t(i)], m(i, 2) = z[size_t(i)];
+  return a;
+}
+
+template <class T>
+py::array_t<T> column(const std::vector<T>& v) {
+  return py::array_t<T>(py::ssize_t(v.size()), v.data());
+}
+
+const char* const kMetricNames[] = {
+    "step",          "time",           "iou",           "coverage",    "max_speed",
+    "density_error", "kinetic_energy", "control_count", "max_density", "substeps"};
+
+std::vector<double> metricValues(const ff::StepMetrics& m) {
+  return {double(m.step),
+          m.time,
+          m.iou,
+          m.coverage,
+          m.max_speed,
+          m.density_error,
+          m.kinetic_energy,
+          double(m.control_count),
+          m.max_density,
+          double(m.substeps)};
+}
+
+// The Python-side run: a Simulation and what the module adds around it.
+class PySimulation {
+ public:
+  PySimulation(const py::object& scene, const std::string& backend, int device, int threads) {
+    if (threads < 0) throw Error("threads: must be >= 0");
+    ff::SceneDesc desc;
+    if (py::isinstance<py::dict>(scene))
+      desc = ff::parseScene(toJson(scene), "<dict>", cwd());
+    else if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
+      desc = ff::loadScene(py::str(py::module_::import("os").attr("fspath")(scene)).cast<std::string>());
+    else if (scene.is_none())
+      desc = ff::defaultScene();
+    else
+      throw Error("scene: give a file name, a dict in scene syntax, or None for the default scene");
+    std::string note;
+    auto b = ff::makeBackend(backend, device, threads, &note);
+    sim_ = std::make_unique<Simulation>(std::move(desc), std::move(b));
+  }
+  explicit PySimulation(std::unique_ptr<Simulation> sim) : sim_(std::move(sim)) {}
+
+  void step() { sim_->step(); }
+
+  // Runs `steps` steps, or up to simulated time `until`, or for `seconds`
+  // more; returns the metrics of every step as arrays. Ctrl-C stops it
+  // between steps (KeyboardInterrupt).
+  py::dict run(long steps, double seconds, double until) {
+    const double dt = sim_->scene().params.fluid.time_step;
+    const int given = (steps > 0) + (seconds > 0.0) + (until > 0.0);
+    if (given != 1) throw Error("run: give exactly one of steps, seconds or until (each > 0)");
+    long n = steps;
+    if (seconds > 0.0) n = long(std::ceil(seconds / dt - 1e-9));
+    if (until > 0.0) n = std::max(0L, long(std::ceil(until / dt - 1e-9)) - sim_->stepCount());
+    std::vector<std::vector<double>> cols(std::size(kMetricNames));
+    for (auto& c : cols) c.reserve(size_t(n));
+    for (long i = 0; i < n; ++i) {
+      sim_->step();
+      const std::vector<double> v = metricValues(sim_->metrics());
+      for (size_t k = 0; k < v.size(); ++k) cols[k].push_back(v[k]);
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    py::dict out;
+    for (size_t k = 0; k < cols.size(); ++k) out[kMetricNames[k]] = column(cols[k]);
+    return out;
+  }
+
+  py::dict metrics() const {
+    py::dict out;
+    const std::vector<double> v = metricValues(sim_->metrics());
+    for (size_t k = 0; k < v.size(); ++k) out[kMetricNames[k]] = v[k];
+    return out;
+  }
+
+  py::dict fluid() {
+    ff::FluidState f;
+    sim_->backend().readFluid(f);
+    py::dict out;
+    out["position"] = columns3(f.x, f.y, f.z);
+    out["velocity"] = columns3(f.vx, f.vy, f.vz);
+    out["id"] = column(f.id);
+    return out;
+  }
+
+  py::dict control() {
+    ff::ControlSet c;
+    ff::ControlFields cf;
+    sim_->backend().readControl(c, cf);
+    py::dict out;
+    out["position"] = columns3(c.x, c.y, c.z);
+    out["velocity"] = columns3(c.vx, c.vy, c.vz);
+    out["rest_position"] = columns3(c.x0, c.y0, c.z0);
+    out["s"] = column(cf.s);
+    return out;
+  }
+
+  void setTarget(const py::object& target) {
+    if (target.is_none()) return sim_->clearTarget();
+    sim_->setTarget(
+        ff::parseTargetSpec(ff::parseJsonStrict(toJson(target), "<target>"), "<target>", "target", cwd()));
+  }
+  void setRegion(const py::object& region) {
+    sim_->setRegion(
+        ff::parseRegionDesc(ff::parseJsonStrict(toJson(region), "<region>"), "<region>", "region"));
+  }
+  void setParams(const py::dict& params) {
+    ff::Params p = sim_->scene().params;
+    ff::parseParamsOverlay(ff::parseJsonStrict(toJson(params), "<params>"), "<params>", "params", p);
+    sim_->setParams(p);
+  }
+
+  Simulation& sim() { return *sim_; }
+
+ private:
+  std::unique_ptr<Simulation> sim_;
+};
+
+class PyExporter {
+ public:
+  PyExporter(const std::string& dir, const std::string& formats, double fps, long every_steps,
+             bool overwrite) {
+    ff::ExportOptions o;
+    o.dir = dir;
+    o.formats = ff::parseExportFormats(formats, "formats");
+    o.fps = fps;
+    o.every_steps = every_steps;
+    o.overwrite = overwrite;
+    exporter_ = std::make_unique<ff::FrameExporter>(o);
+  }
+  // Writes the simulation's current state as the next frame.
+  void write(PySimulation& s) {
+    ff::readParticleFrame(s.sim(), exporter_->buffer());
+    exporter_->write(exporter_->buffer());
+  }
+  // Writes a frame only if one is due at this time (fps or every_steps).
+  bool writeIfDue(PySimulation& s) { return ff::exportFrameIfDue(s.sim(), *exporter_); }
+  long frames() const { return exporter_->frames(); }
+
+ private:
+  std::unique_ptr<ff::FrameExporter> exporter_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(flowform, m) {
+  m.doc() = "flowform: an SPH liquid that flows into a target shape (shape-matching control)";
+  static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      PyErr_SetString(error.ptr(), e.what());
+    }
+  });
+
+  py::class_<PySimulation>(m, "Simulation")
+      .def(py::init<const py::object&, const std::string&, int, int>(), py::arg("scene") = py::none(),
+           py::arg("backend") = "cpu", py::arg("device") = -1, py::arg("threads") = 0,
+           "A run of a scene: a file name, a dict in scene syntax (scenes/README.md), or None for the "
+           "built-in default scene. backend: cpu, opencl or auto.")
+      .def("step", &PySimulation::step, "One fluid time step.")
+      .def("run", &PySimulation::run, py::arg("steps") = 0, py::arg("seconds") = 0.0, py::arg("until") = 0.0,
+           "Runs `steps` steps, `seconds` more simulated seconds, or `until` a simulated time; returns each "
+           "step's metrics as a dict of NumPy arrays (the columns of `flowform run --metrics`).")
+      .def("set_target", &PySimulation::setTarget, py::arg("target"),
+           "A target in scene syntax ('sphere', 'bunny.obj', {'shape': 'box', ...}); None switches control "
+           "off.")
+      .def("set_region", &PySimulation::setRegion, py::arg("region"),
+           "The controlled region in scene syntax: 'all', {'box': ...} or {'sphere': ...}.")
+      .def("set_params", &PySimulation::setParams, py::arg("params"),
+           "Changes parameters now: a dict in the scene's 'params' syntax (only the keys given).")
+      .def("fluid", &PySimulation::fluid, "The fluid: position and velocity (n, 3) float32, id (n,) uint32.")
+      .def("control", &PySimulation::control,
+           "The control particles: position, velocity, rest_position (m, 3) float32, s (m,) float32.")
+      .def_property_readonly("metrics", &PySimulation::metrics, "The last step's metrics.")
+      .def_property_readonly("time", [](PySimulation& s) { return s.sim().time(); })
+      .def_property_readonly("step_count", [](PySimulation& s) { return s.sim().stepCount(); })
+      .def_property_readonly("target",
+                             [](PySimulation& s) -> py::object {
+                               if (!s.sim().target()) return py::none();
+                               return py::str(s.sim().target()->label);
+                             })
+      .def_property_readonly("backend", [](PySimulation& s) { return s.sim().backend().name(); })
+      .def(
+          "save_checkpoint",
+          [](PySimulation& s, const std::string& path) { ff::writeCheckpoint(path, s.sim()); },
+          py::arg("path"), "Writes a checkpoint (as `flowform run --checkpoint-every`).");
+
+  m.def(
+      "resume",
+      [](const std::string& path, const std::string& backend, int device, int threads) {
+        std::string note;
+        return PySimulation(ff::loadCheckpoint(path, ff::makeBackend(backend, device, threads, &note)));
+      },
+      py::arg("path"), py::arg("backend") = "cpu", py::arg("device") = -1, py::arg("threads") = 0,
+      "A Simulation resumed from a checkpoint file.");
+
+  py::class_<PyExporter>(m, "Exporter")
+      .def(py::init<const std::string&, const std::string&, double, long, bool>(), py::arg("dir"),
+           py::arg("formats") = "vtk", py::arg("fps") = 30.0, py::arg("every_steps") = 0,
+           py::arg("overwrite") = false,
+           "Frames into `dir` (formats: a comma-separated list of vtk, bgeo, ply), as `flowform run "
+           "--export`.")
+      .def("write", &PyExporter::write, py::arg("sim"), "Writes the current state as the next frame.")
+      .def("write_if_due", &PyExporter::writeIfDue, py::arg("sim"),
+           "Writes a frame if one is due at the simulation's time; returns whether it did.")
+      .def_property_readonly("frames", &PyExporter::frames);
+}

@@ -1,0 +1,64 @@
+#!/usr/bin/python3
+"""Runs examples/wedge.py or examples/keyframes.py small and cheap (the
+default scene, a few steps) in a temporary folder and checks their output.
+
+Usage: test_examples.py wedge|keyframes SOURCE_DIR MODULE_DIR
+"""
+import csv
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+
+def run(script, args, tmp, module_dir):
+    env = dict(os.environ, PYTHONPATH=module_dir)
+    r = subprocess.run([sys.executable, script] + args, cwd=tmp, env=env, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit("%s failed (%d):\n%s%s" % (script, r.returncode, r.stdout, r.stderr))
+    return r.stdout
+
+
+def check(cond, what):
+    if not cond:
+        sys.exit("FAILED: " + what)
+
+
+def wedge(src, module_dir, tmp):
+    run(os.path.join(src, "examples", "wedge.py"),
+        ["--param", "control.attraction", "--values", "0.00004,0.00016", "--steps", "4", "--threads", "2",
+         "--out", "w.csv"], tmp, module_dir)
+    rows = list(csv.reader(open(os.path.join(tmp, "w.csv"))))
+    check(rows[0][:3] == ["control.attraction", "final_iou", "final_coverage"], "header %s" % rows[0])
+    check(len(rows) == 3, "one row per value, got %d" % (len(rows) - 1))
+    check([float(r[0]) for r in rows[1:]] == [0.00004, 0.00016], "values column %s" % rows[1:])
+    for r in rows[1:]:
+        check(0.0 <= float(r[1]) <= 1.0, "iou in [0, 1]: %s" % r)
+        check(abs(float(r[-1]) - 4 * 0.004) < 1e-6, "4 steps of 0.004 s: %s" % r)
+    # Different attraction, different run: the wedge really changed the parameter.
+    check(rows[1][1:-1] != rows[2][1:-1], "both runs gave the same metrics")
+
+
+def keyframes(src, module_dir, tmp):
+    out = run(os.path.join(src, "examples", "keyframes.py"),
+              ["--keys", "0:sphere,0.02:box", "--seconds", "0.04", "--threads", "2", "--metrics", "k.csv",
+               "--export", "frames"], tmp, module_dir)
+    check("target box" in out, "the box keyframe was applied:\n" + out)
+    rows = list(csv.DictReader(open(os.path.join(tmp, "k.csv"))))
+    check(len(rows) == 10, "10 steps of 0.004 s, got %d" % len(rows))
+    check([int(float(r["step"])) for r in rows] == list(range(1, 11)), "steps 1..10")
+    # The control set changed with the target at 0.02 s (step 5 -> 6).
+    before, after = float(rows[4]["control_count"]), float(rows[5]["control_count"])
+    check(before > 0 and after > 0 and before != after, "control count %g -> %g" % (before, after))
+    check(os.path.exists(os.path.join(tmp, "frames", "fluid_00000.ply")), "exported frames")
+
+
+if __name__ == "__main__":
+    which, src, module_dir = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
+    tmp = tempfile.mkdtemp(prefix="flowform_example_")
+    try:
+        {"wedge": wedge, "keyframes": keyframes}[which](src, module_dir, tmp)
+    finally:
+        shutil.rmtree(tmp)
+    print("OK")

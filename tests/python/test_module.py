@@ -1,0 +1,151 @@
+#!/usr/bin/python3
+"""The Python module `flowform` against the flowform program.
+
+- A scene run from Python gives the CLI's metrics (every CSV cell, printed the
+  same way) and the CLI's exported particle positions bit for bit, on the CPU
+  backend with the same thread count.
+- The arrays have the right shapes, types and ids (a permutation of 0..n-1).
+- A bad scene raises flowform.Error naming the file and the key; target,
+  region and parameter changes work at any time and bad ones raise.
+
+Usage: test_module.py FLOWFORM_EXE MODULE_DIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import meshio
+import numpy as np
+
+EXE = None
+SCENE = {
+    "name": "py",
+    "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]},
+    "fluid": [{"origin": [0.06, 0.0, 0.06], "dims": [10, 10, 10]}],
+    "schedule": [{"time": 0.0, "target": "sphere"}],
+}
+STEPS = 60
+
+
+class ModuleTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="flowform_py_")
+        self.scene = os.path.join(self.dir, "scene.json")
+        with open(self.scene, "w") as f:
+            json.dump(SCENE, f)
+
+    def tearDown(self):
+        shutil.rmtree(self.dir)
+
+    def test_metrics_and_particles_match_the_cli_bit_for_bit(self):
+        csv = os.path.join(self.dir, "m.csv")
+        out = os.path.join(self.dir, "frames")
+        subprocess.run([EXE, "run", self.scene, "--backend", "cpu", "--threads", "2", "--steps", str(STEPS),
+                        "--metrics", csv, "--format", "ply", "--export", out, "--export-every", str(STEPS)],
+                       check=True, stdout=subprocess.DEVNULL)
+        sim = flowform.Simulation(self.scene, backend="cpu", threads=2)
+        hist = sim.run(steps=STEPS)
+        with open(csv) as f:
+            rows = f.read().splitlines()
+        header = rows[0].split(",")
+        self.assertEqual(len(rows), STEPS + 1)
+        for name in header:
+            self.assertEqual(hist[name].shape, (STEPS,), name)
+        for i, row in enumerate(rows[1:]):
+            mine = ",".join("%.9g" % hist[name][i] for name in header)
+            self.assertEqual(mine, row, "step %d" % (i + 1))
+        # The CLI's last frame (step STEPS) against the module's fluid, by id.
+        mesh = meshio.read(os.path.join(out, "fluid_00001.ply"))
+        cli_id = np.asarray(mesh.point_data["id"]).astype(np.int64)
+        cli_pos = np.asarray(mesh.points)[np.argsort(cli_id)]
+        fluid = sim.fluid()
+        py_pos = fluid["position"][np.argsort(fluid["id"])]
+        self.assertTrue(np.array_equal(cli_pos.astype(np.float32), py_pos))
+        self.assertEqual(sim.step_count, STEPS)
+
+    def test_arrays_have_the_right_shapes_and_ids(self):
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        sim.run(steps=3)
+        fluid = sim.fluid()
+        self.assertEqual(fluid["position"].shape, (1000, 3))
+        self.assertEqual(fluid["velocity"].shape, (1000, 3))
+        self.assertEqual(fluid["position"].dtype, np.float32)
+        self.assertEqual(fluid["id"].dtype, np.uint32)
+        self.assertTrue(np.array_equal(np.sort(fluid["id"]), np.arange(1000)))
+        # Every particle is inside the container.
+        self.assertTrue((fluid["position"] >= 0).all() and (fluid["position"] <= 0.2).all())
+        control = sim.control()
+        m = int(sim.metrics["control_count"])
+        self.assertGreater(m, 0)
+        for key in ("position", "velocity", "rest_position"):
+            self.assertEqual(control[key].shape, (m, 3), key)
+        self.assertEqual(control["s"].shape, (m,))
+        self.assertEqual(sim.target, "sphere")
+        self.assertEqual(sim.metrics["step"], 3)
+
+    def test_a_bad_scene_names_the_file_and_the_key(self):
+        bad = os.path.join(self.dir, "bad.json")
+        with open(bad, "w") as f:
+            json.dump({"fluid": [{"origin": [0, 0, 0], "dims": [4, 4, 4]}],
+                       "params": {"fluid": {"viscosity": -1}}}, f)
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(bad)
+        self.assertIn("bad.json", str(ctx.exception))
+        self.assertIn("params.fluid.viscosity", str(ctx.exception))
+        self.assertIsInstance(ctx.exception, RuntimeError)
+        # The CLI says the same.
+        cli = subprocess.run([EXE, "run", bad, "--steps", "1"], capture_output=True, text=True)
+        self.assertNotEqual(cli.returncode, 0)
+        self.assertIn(str(ctx.exception), cli.stderr)
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(dict(SCENE, colour="blue"))
+        self.assertIn("<dict>", str(ctx.exception))
+        self.assertIn("colour", str(ctx.exception))
+
+    def test_target_region_and_parameters_change_at_any_time(self):
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        sim.run(steps=2)
+        sim.set_region({"box": {"min": [0, 0, 0], "max": [0.2, 0.05, 0.2]}})
+        sim.set_target({"shape": "box", "size": [1, 1, 1]})
+        self.assertEqual(sim.target, "box")
+        sim.step()
+        sim.set_params({"fluid": {"viscosity": 0.03}})
+        with self.assertRaises(flowform.Error) as ctx:
+            sim.set_params({"fluid": {"viscosity": -2}})
+        self.assertIn("viscosity", str(ctx.exception))
+        with self.assertRaises(flowform.Error):
+            sim.set_target("no_such_mesh.obj")
+        sim.set_target(None)
+        self.assertIsNone(sim.target)
+        sim.run(seconds=0.008)
+        self.assertEqual(sim.step_count, 5)
+        with self.assertRaises(flowform.Error):
+            sim.run(steps=1, seconds=1.0)
+
+    def test_export_and_checkpoint(self):
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        out = os.path.join(self.dir, "exp")
+        exporter = flowform.Exporter(out, formats="ply", every_steps=1)
+        exporter.write(sim)
+        sim.step()
+        self.assertTrue(exporter.write_if_due(sim))
+        self.assertEqual(exporter.frames, 2)
+        mesh = meshio.read(os.path.join(out, "fluid_00001.ply"))
+        self.assertEqual(len(mesh.points), 1000)
+        ck = os.path.join(self.dir, "c.ffck")
+        sim.save_checkpoint(ck)
+        a = sim.run(steps=3)
+        b = flowform.resume(ck, threads=2).run(steps=3)
+        self.assertTrue(np.array_equal(a["iou"], b["iou"]))
+        self.assertTrue(np.array_equal(a["max_speed"], b["max_speed"]))
+
+
+if __name__ == "__main__":
+    EXE = sys.argv[1]
+    sys.path.insert(0, sys.argv[2])
+    import flowform  # noqa: E402
+    unittest.main(argv=sys.argv[:1], verbosity=2)

@@ -76,6 +76,7 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
   r.check(next <= scene_.schedule.size(), "the schedule position is past the schedule's end");
   next_schedule_ = size_t(next);
   r.pod(has_target_), r.pod(controlled_), r.pod(target_volume_);
+  r.pod(metrics_requested_), r.pod(metrics_fresh_), r.pod(unchecked_from_);
   if (has_target_) {
     target_spec_ = readTargetState(r);
     target_ = &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid));
@@ -90,6 +91,7 @@ void Simulation::saveState(StateWriter& w) const {
   w.pod(step_), w.pod(time_), w.pod(metrics_);
   w.pod(uint64_t(next_schedule_));
   w.pod(has_target_), w.pod(controlled_), w.pod(target_volume_);
+  w.pod(metrics_requested_), w.pod(metrics_fresh_), w.pod(unchecked_from_);
   if (has_target_) writeTargetState(w, target_spec_);
   backend_->saveState(w);
 }

@@ -87,10 +87,7 @@ int runScene(const RunOptions& o) {
               sim.backend().name().c_str(), sim.backend().device().c_str(), steps, dt);
 
   MetricsCsv csv;
-  const std::vector<std::string> columns = {
-      "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
-      "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-      "solver_capped"};
+  const std::vector<std::string> columns(kMetricColumns.begin(), kMetricColumns.end());
   if (!o.metrics.empty() && first > 0)
     csv.resume(o.metrics, columns, double(first));
   else if (!o.metrics.empty())
@@ -109,10 +106,10 @@ int runScene(const RunOptions& o) {
     sim.step();
     const StepMetrics& m = sim.metrics();
     progress.update(s + 1 - first, m.time);
-    if (csv.isOpen() && sim.metricsFresh())
-      csv.row({double(m.step), m.time, m.iou, m.coverage, m.max_speed, m.density_error, m.kinetic_energy,
-               double(m.control_count), m.max_density, double(m.substeps), double(m.solver_iterations),
-               m.max_density_error, double(m.solver_capped)});
+    if (csv.isOpen() && sim.metricsFresh()) {
+      const auto row = metricValues(m);
+      csv.row(std::vector<double>(row.begin(), row.end()));
+    }
     if (exporter) exportFrameIfDue(sim, *exporter);
     if (print) {
       progress.interrupt();

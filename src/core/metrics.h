@@ -1,6 +1,7 @@
 // metrics.h - how well the fluid matches the target, and how it behaves.
 // Definitions: docs/METRICS.md.
 #pragma once
+#include <array>
 
 namespace ff {
 
@@ -22,5 +23,29 @@ struct StepMetrics {
   long solver_capped = 0;
   double max_density_error = 0.0;  // max (rho - rho0) / rho0, the largest compression
 };
+
+// The metrics as a table row: the column names (the CSV header of
+// `flowform run --metrics`, the keys of the Python module's arrays) and the
+// values of one step, in the same order. New columns go at the end.
+inline constexpr std::array<const char*, 13> kMetricColumns = {
+    "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
+    "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
+    "solver_capped"};
+
+inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
+  return {double(m.step),
+          m.time,
+          m.iou,
+          m.coverage,
+          m.max_speed,
+          m.density_error,
+          m.kinetic_energy,
+          double(m.control_count),
+          m.max_density,
+          double(m.substeps),
+          double(m.solver_iterations),
+          m.max_density_error,
+          double(m.solver_capped)};
+}
 
 }  // namespace ff

@@ -52,23 +52,6 @@ py::array_t<T> column(const std::vector<T>& v) {
   return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
-const char* const kMetricNames[] = {
-    "step",          "time",           "iou",           "coverage",    "max_speed",
-    "density_error", "kinetic_energy", "control_count", "max_density", "substeps"};
-
-std::vector<double> metricValues(const ff::StepMetrics& m) {
-  return {double(m.step),
-          m.time,
-          m.iou,
-          m.coverage,
-          m.max_speed,
-          m.density_error,
-          m.kinetic_energy,
-          double(m.control_count),
-          m.max_density,
-          double(m.substeps)};
-}
-
 // The Python-side run: a Simulation and what the module adds around it.
 class PySimulation {
  public:
@@ -101,23 +84,23 @@ class PySimulation {
     long n = steps;
     if (seconds > 0.0) n = long(std::ceil(seconds / dt - 1e-9));
     if (until > 0.0) n = std::max(0L, long(std::ceil(until / dt - 1e-9)) - sim_->stepCount());
-    std::vector<std::vector<double>> cols(std::size(kMetricNames));
+    std::vector<std::vector<double>> cols(ff::kMetricColumns.size());
     for (auto& c : cols) c.reserve(size_t(n));
     for (long i = 0; i < n; ++i) {
       sim_->step();
-      const std::vector<double> v = metricValues(sim_->metrics());
+      const auto v = ff::metricValues(sim_->metrics());
       for (size_t k = 0; k < v.size(); ++k) cols[k].push_back(v[k]);
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
     py::dict out;
-    for (size_t k = 0; k < cols.size(); ++k) out[kMetricNames[k]] = column(cols[k]);
+    for (size_t k = 0; k < cols.size(); ++k) out[ff::kMetricColumns[k]] = column(cols[k]);
     return out;
   }
 
   py::dict metrics() const {
     py::dict out;
-    const std::vector<double> v = metricValues(sim_->metrics());
-    for (size_t k = 0; k < v.size(); ++k) out[kMetricNames[k]] = v[k];
+    const auto v = ff::metricValues(sim_->metrics());
+    for (size_t k = 0; k < v.size(); ++k) out[ff::kMetricColumns[k]] = v[k];
     return out;
   }
 

@@ -3,12 +3,12 @@
 #pragma once
 #include <vector>
 
-#include "sim/backend.h"
 #include "host/backend_opencl.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"
 #include "host/cl_program.h"
 #include "host/device_grid.h"
+#include "sim/backend.h"
 
 namespace ff {
 
@@ -20,8 +20,9 @@ struct OpenClBackend::Impl {
   GridBuilder grids;
   ClKernel reorder, density, forces, pressure_wcsph, integrate;
   ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
-  ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes, control_forces_lanes;  // 8 particles per work-item
-  ClKernel m_iou_lanes;                                        // 8 voxels per work-item
+  ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
+      control_forces_lanes;  // 8 particles per work-item
+  ClKernel m_iou_lanes;      // 8 voxels per work-item
   ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou;
 
   // Fluid, double-buffered for the reorder: [cur] holds the current state.

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "sim/checkpoint.h"
 #include "core/error.h"
+#include "sim/checkpoint.h"
 
 namespace ff::app {
 

@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
-#include "parallel/parallel_grain.h"
-#include "parallel/simd8.h"
 #include "ff_control.h"
 #include "ff_sph.h"
+#include "parallel/parallel_grain.h"
+#include "parallel/simd8.h"
 
 namespace ff {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "parallel/simd8.h"
 #include "ff_sph.h"
+#include "parallel/simd8.h"
 
 namespace ff {
 

@@ -1,7 +1,7 @@
 // iou.h - voxel intersection over union between the target and the fluid.
 #pragma once
-#include "grid/uniform_grid.h"
 #include "ff_rotation.h"
+#include "grid/uniform_grid.h"
 #include "target/target_shape.h"
 
 namespace ff {

@@ -111,21 +111,14 @@ __kernel void control_forces_lanes(
   const int8 valid = ff_lane_valid(i0, n);
   const float8 xe = ff_load_lanes(x, i0, valid, FF_LANE_FAR), ye = ff_load_lanes(y, i0, valid, FF_LANE_FAR),
                ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
-  const float lo[3] = {ff_lanes_min(xe, valid), ff_lanes_min(ye, valid), ff_lanes_min(ze, valid)};
-  const float hi[3] = {ff_lanes_max(xe, valid), ff_lanes_max(ye, valid), ff_lanes_max(ze, valid)};
-  const float o[3] = {geo.x, geo.y, geo.z};
-  const int nn[3] = {dims.x, dims.y, dims.z};
   const float reach = ff_query_reach(radius, cell);
-  const int z0 = ff_cell_coord(lo[2] - reach, o[2], geo.w, nn[2]),
-            z1 = ff_cell_coord(hi[2] + reach, o[2], geo.w, nn[2]);
-  const int y0 = ff_cell_coord(lo[1] - reach, o[1], geo.w, nn[1]),
-            y1 = ff_cell_coord(hi[1] + reach, o[1], geo.w, nn[1]);
+  const FfLanesRows q = ff_lanes_rows(xe, ye, ze, valid, geo, dims, reach);
   const float8 zero = (float8)(0.0f);
   float8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
-  for (int cz = z0; cz <= z1; ++cz)
-    for (int cy = y0; cy <= y1; ++cy) {
+  for (int cz = q.z0; cz <= q.z1; ++cz)
+    for (int cy = q.y0; cy <= q.y1; ++cy) {
       uint b, en;
-      if (!ff_row_span(start, lo, hi, reach, cy, cz, o, cell, geo.w, nn, &b, &en)) continue;
+      if (!ff_row_span(start, q.lo, q.hi, reach, cy, cz, q.o, cell, geo.w, q.nn, &b, &en)) continue;
       for (uint k = b; k < en; ++k) {
         const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
         const float8 d2 = dx * dx + dy * dy + dz * dz;

@@ -65,19 +65,12 @@ __kernel void forces_lanes(__global const float* x, __global const float* y, __g
                  zi = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
     const float8 vxi = ff_load_lanes(vx, i0, valid, 0.0f), vyi = ff_load_lanes(vy, i0, valid, 0.0f),
                  vzi = ff_load_lanes(vz, i0, valid, 0.0f);
-    const float lo[3] = {ff_lanes_min(xi, valid), ff_lanes_min(yi, valid), ff_lanes_min(zi, valid)};
-    const float hi[3] = {ff_lanes_max(xi, valid), ff_lanes_max(yi, valid), ff_lanes_max(zi, valid)};
-    const float o[3] = {geo.x, geo.y, geo.z};
-    const int nn[3] = {dims.x, dims.y, dims.z};
     const float reach = ff_query_reach(h, cell);
-    const int z0 = ff_cell_coord(lo[2] - reach, o[2], geo.w, nn[2]),
-              z1 = ff_cell_coord(hi[2] + reach, o[2], geo.w, nn[2]);
-    const int y0 = ff_cell_coord(lo[1] - reach, o[1], geo.w, nn[1]),
-              y1 = ff_cell_coord(hi[1] + reach, o[1], geo.w, nn[1]);
-    for (int cz = z0; cz <= z1; ++cz)
-      for (int cy = y0; cy <= y1; ++cy) {
+    const FfLanesRows q = ff_lanes_rows(xi, yi, zi, valid, geo, dims, reach);
+    for (int cz = q.z0; cz <= q.z1; ++cz)
+      for (int cy = q.y0; cy <= q.y1; ++cy) {
         uint b, e;
-        if (!ff_row_span(start, lo, hi, reach, cy, cz, o, cell, geo.w, nn, &b, &e)) continue;
+        if (!ff_row_span(start, q.lo, q.hi, reach, cy, cz, q.o, cell, geo.w, q.nn, &b, &e)) continue;
         for (uint j = b; j < e; ++j) {
           const float8 dx = xi - x[j], dy = yi - y[j], dz = zi - z[j];
           const float8 dist = sqrt(dx * dx + dy * dy + dz * dz);

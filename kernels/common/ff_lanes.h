@@ -37,5 +37,26 @@ inline float ff_lanes_max(float8 v, int8 valid) {
   return fmax(b.x, b.y);
 }
 
+/* The grid rows an 8-lane neighbour query visits: the lanes' bounding box,
+   grown by `reach`, as z and y cell ranges (ff_row_span prunes x per row). */
+typedef struct {
+  float lo[3], hi[3], o[3];
+  int nn[3];
+  int z0, z1, y0, y1;
+} FfLanesRows;
+inline FfLanesRows ff_lanes_rows(float8 x, float8 y, float8 z, int8 valid, float4 geo, int4 dims,
+                                 float reach) {
+  FfLanesRows q;
+  q.lo[0] = ff_lanes_min(x, valid), q.lo[1] = ff_lanes_min(y, valid), q.lo[2] = ff_lanes_min(z, valid);
+  q.hi[0] = ff_lanes_max(x, valid), q.hi[1] = ff_lanes_max(y, valid), q.hi[2] = ff_lanes_max(z, valid);
+  q.o[0] = geo.x, q.o[1] = geo.y, q.o[2] = geo.z;
+  q.nn[0] = dims.x, q.nn[1] = dims.y, q.nn[2] = dims.z;
+  q.z0 = ff_cell_coord(q.lo[2] - reach, q.o[2], geo.w, q.nn[2]);
+  q.z1 = ff_cell_coord(q.hi[2] + reach, q.o[2], geo.w, q.nn[2]);
+  q.y0 = ff_cell_coord(q.lo[1] - reach, q.o[1], geo.w, q.nn[1]);
+  q.y1 = ff_cell_coord(q.hi[1] + reach, q.o[1], geo.w, q.nn[1]);
+  return q;
+}
+
 #endif
 #endif /* FF_LANES_H */

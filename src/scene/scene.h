@@ -1,6 +1,7 @@
 // scene.h - a scene: the container, the fluid, the parameters, the targets and
 // their schedule, and the controlled region. Parsed from JSON (scene_json.cpp).
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,15 @@ struct RegionDesc {
   float radius = 0.0f;
 };
 
+// Where the viewer's camera looks from (`flowform view`; `run` ignores it).
+// Every part is optional: a part not given keeps the camera that frames the
+// container. Angles in degrees (yaw around +y, 0 = looking along -z; pitch
+// above the horizon), distance in metres from `target`, the point orbited.
+struct CameraDesc {
+  std::optional<float> yaw_deg, pitch_deg, distance, fov_deg;
+  std::optional<Vec3> target;
+};
+
 struct ScheduleEntry {
   double time = 0.0;  // seconds of simulated time at which this target takes over
   TargetSpec target;
@@ -49,6 +59,7 @@ struct SceneDesc {
   RegionDesc region;
   std::vector<ScheduleEntry> schedule;  // sorted by time; may be empty (no control)
   double duration = 4.0;                // default run length in seconds
+  std::optional<CameraDesc> camera;     // the viewer's camera, when the file gives one
 
   long fluidCount() const;
 };

@@ -270,6 +270,32 @@ RegionDesc readRegion(const Reader& r, const json& j, const std::string& path) {
   return g;
 }
 
+CameraDesc readCamera(const Reader& r, const json& j, const std::string& path) {
+  r.object(j, path, {"yaw", "pitch", "distance", "fov", "target"});
+  if (j.empty()) r.fail(path, "must not be empty");
+  CameraDesc c;
+  if (j.contains("yaw")) c.yaw_deg = r.real(j["yaw"], child(path, "yaw"));
+  if (j.contains("pitch")) {
+    const float p = r.real(j["pitch"], child(path, "pitch"));
+    if (!(p >= -89.0f && p <= 89.0f))
+      r.fail(child(path, "pitch"), "must be in [-89, 89] degrees (got " + fmt(p) + ")");
+    c.pitch_deg = p;
+  }
+  if (j.contains("distance")) {
+    const float d = r.real(j["distance"], child(path, "distance"));
+    r.positive(d, child(path, "distance"));
+    c.distance = d;
+  }
+  if (j.contains("fov")) {
+    const float f = r.real(j["fov"], child(path, "fov"));
+    if (!(f >= 5.0f && f <= 150.0f))
+      r.fail(child(path, "fov"), "must be in [5, 150] degrees (got " + fmt(f) + ")");
+    c.fov_deg = f;
+  }
+  if (j.contains("target")) c.target = r.vec3(j["target"], child(path, "target"));
+  return c;
+}
+
 bool isMeshName(const std::string& s) {
   std::string ext = std::filesystem::path(s).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -479,7 +505,8 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   const Reader r{source};
   if (!root.is_object()) r.fail("", "the scene must be a JSON object");
   r.object(root, "",
-           {"name", "preset", "duration", "params", "container", "fluid", "region", "target", "schedule"});
+           {"name", "preset", "duration", "params", "container", "fluid", "region", "target", "schedule",
+            "camera"});
 
   SceneDesc scene;
   scene.source = source;
@@ -521,6 +548,7 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   if (root.contains("target"))
     scene.schedule.push_back({0.0, readTarget(r, root["target"], "target", base_dir)});
   if (root.contains("schedule")) scene.schedule = readSchedule(r, root["schedule"], base_dir);
+  if (root.contains("camera")) scene.camera = readCamera(r, root["camera"], "camera");
   return scene;
 }
 
@@ -539,6 +567,10 @@ TargetSpec parseTargetSpec(const nlohmann::json& j, const std::string& source, c
 
 RegionDesc parseRegionDesc(const nlohmann::json& j, const std::string& source, const std::string& path) {
   return readRegion(Reader{source}, j, path);
+}
+
+CameraDesc parseCameraDesc(const nlohmann::json& j, const std::string& source, const std::string& path) {
+  return readCamera(Reader{source}, j, path);
 }
 
 void parseParamsOverlay(const nlohmann::json& j, const std::string& source, const std::string& path,

@@ -18,6 +18,9 @@ TargetSpec parseTargetSpec(const nlohmann::json& j, const std::string& source, c
                            const std::string& base_dir);
 // A region in scene syntax: "all", {"box": ...} or {"sphere": ...}.
 RegionDesc parseRegionDesc(const nlohmann::json& j, const std::string& source, const std::string& path);
+// A camera in scene syntax: {"yaw": deg, "pitch": deg, "distance": m,
+// "fov": deg, "target": [x, y, z]}, each key optional but at least one given.
+CameraDesc parseCameraDesc(const nlohmann::json& j, const std::string& source, const std::string& path);
 // A "params" object in scene syntax, written over `params` (only the keys
 // given). Types are checked here; ranges are validateParams' job.
 void parseParamsOverlay(const nlohmann::json& j, const std::string& source, const std::string& path,

@@ -20,8 +20,8 @@ namespace {
 
 using json = nlohmann::json;
 
-const char* const kActionKeys[] = {"target", "region", "camera",     "params", "render",
-                                   "panel",  "pause",  "screenshot", "play",   "quit"};
+const char* const kActionKeys[] = {"target", "region",     "camera", "params", "render", "panel",
+                                   "pause",  "screenshot", "save",   "play",   "quit"};
 
 std::string fmt(double v) {
   char buf[64];
@@ -73,42 +73,7 @@ struct Reader {
     if (!j.is_string()) fail(path, "must be a string");
     return j.get<std::string>();
   }
-
-  Vec3 vec3(const json& j, const std::string& path) const {
-    if (!j.is_array() || j.size() != 3) fail(path, "must be an array of 3 numbers");
-    Vec3 v;
-    for (int i = 0; i < 3; ++i) {
-      if (!j[size_t(i)].is_number()) fail(path, "must be an array of 3 numbers");
-      v[i] = float(number(j[size_t(i)], path + "[" + std::to_string(i) + "]"));
-    }
-    return v;
-  }
 };
-
-CameraAction readCamera(const Reader& r, const json& j, const std::string& path) {
-  r.keys(j, path, {"yaw", "pitch", "distance", "fov", "target"});
-  CameraAction c;
-  if (j.contains("yaw")) c.yaw_deg = float(r.number(j["yaw"], child(path, "yaw")));
-  if (j.contains("pitch")) {
-    const double p = r.number(j["pitch"], child(path, "pitch"));
-    if (!(p >= -89.0 && p <= 89.0))
-      r.fail(child(path, "pitch"), "must be in [-89, 89] degrees (got " + fmt(p) + ")");
-    c.pitch_deg = float(p);
-  }
-  if (j.contains("distance")) {
-    const double d = r.number(j["distance"], child(path, "distance"));
-    if (!(d > 0.0)) r.fail(child(path, "distance"), "must be > 0 (got " + fmt(d) + ")");
-    c.distance = float(d);
-  }
-  if (j.contains("fov")) {
-    const double f = r.number(j["fov"], child(path, "fov"));
-    if (!(f >= 5.0 && f <= 150.0))
-      r.fail(child(path, "fov"), "must be in [5, 150] degrees (got " + fmt(f) + ")");
-    c.fov_deg = float(f);
-  }
-  if (j.contains("target")) c.target = r.vec3(j["target"], child(path, "target"));
-  return c;
-}
 
 RenderAction readRender(const Reader& r, const json& j, const std::string& path) {
   r.keys(j, path, {"mode", "control", "ghost", "region"});
@@ -155,8 +120,8 @@ ScriptAction readAction(const Reader& r, const json& j, const std::string& path,
   if (!j.contains("at")) r.fail(child(path, "at"), "required key is missing");
   if (action_key.empty())
     r.fail(path,
-           "has no action (one of: target, region, camera, params, render, panel, screenshot, pause, "
-           "play, quit)");
+           "has no action (one of: target, region, camera, params, render, panel, screenshot, save, "
+           "pause, play, quit)");
 
   ScriptAction a;
   a.where = r.source + ": " + path;
@@ -176,7 +141,7 @@ ScriptAction readAction(const Reader& r, const json& j, const std::string& path,
     a.region = parseRegionDesc(v, r.source, vpath);
   } else if (action_key == "camera") {
     a.kind = ScriptAction::Kind::Camera;
-    a.camera = readCamera(r, v, vpath);
+    a.camera = parseCameraDesc(v, r.source, vpath);
   } else if (action_key == "params") {
     a.kind = ScriptAction::Kind::Params;
     Params check;  // ranges do not depend on each other: check the keys given over valid values
@@ -201,6 +166,11 @@ ScriptAction readAction(const Reader& r, const json& j, const std::string& path,
     if (a.screenshot.empty()) r.fail(vpath, "must not be empty");
     if (lowerExtension(a.screenshot) != ".png")
       r.fail(vpath, "must be a .png file name (got '" + a.screenshot + "')");
+  } else if (action_key == "save") {
+    a.kind = ScriptAction::Kind::Save;
+    a.save = r.string(v, vpath);
+    if (a.save.empty()) r.fail(vpath, "must not be empty");
+    if (lowerExtension(a.save) != ".json") r.fail(vpath, "must be a .json file name (got '" + a.save + "')");
   } else if (action_key == "pause") {
     a.kind = ScriptAction::Kind::Pause;
     r.isTrue(v, vpath);
@@ -268,6 +238,8 @@ const char* actionName(ScriptAction::Kind kind) {
       return "panel";
     case ScriptAction::Kind::Screenshot:
       return "screenshot";
+    case ScriptAction::Kind::Save:
+      return "save";
     case ScriptAction::Kind::Pause:
       return "pause";
     case ScriptAction::Kind::Play:

@@ -14,10 +14,7 @@
 
 namespace ff::viewer {
 
-struct CameraAction {
-  std::optional<float> yaw_deg, pitch_deg, distance, fov_deg;
-  std::optional<Vec3> target;
-};
+using CameraAction = CameraDesc;  // the scene's camera block (scene/scene.h)
 
 struct RenderAction {
   std::optional<bool> particles;  // true: plain particles, false: screen-space fluid
@@ -25,7 +22,20 @@ struct RenderAction {
 };
 
 struct ScriptAction {
-  enum class Kind { Target, NoTarget, Region, Camera, Params, Render, Panel, Screenshot, Pause, Play, Quit };
+  enum class Kind {
+    Target,
+    NoTarget,
+    Region,
+    Camera,
+    Params,
+    Render,
+    Panel,
+    Screenshot,
+    Save,
+    Pause,
+    Play,
+    Quit
+  };
   Kind kind = Kind::Quit;
   double at = 0.0;         // simulated seconds
   std::string where;       // "FILE: actions[i]", for messages while it runs
@@ -36,6 +46,7 @@ struct ScriptAction {
   RenderAction render;     // Render
   bool panel = true;       // Panel: show (true) or hide the panel
   std::string screenshot;  // Screenshot: PNG path (relative: to the current directory)
+  std::string save;        // Save: scene file path (relative: to the current directory)
 };
 
 struct Script {

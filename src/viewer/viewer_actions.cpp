@@ -6,12 +6,15 @@
 #include <string>
 
 #include "core/error.h"
+#include "scene/scene_writer.h"
 #include "viewer/region_pick.h"
 #include "viewer/viewer_ui.h"
 
 namespace ff::viewer {
 
 namespace {
+
+constexpr float kPi = 3.14159265358979f;
 
 std::string fmt3(const Vec3& v) {
   char buf[96];
@@ -125,6 +128,38 @@ void toggleMode(ViewerUi& ui, PickMode mode) {
   ui.mode = ui.mode == mode ? PickMode::Camera : mode;
   ui.drag_button = -1;
   ui.hover_particle = -1;
+}
+
+CameraDesc cameraDesc(const render::OrbitCamera& camera) {
+  CameraDesc d;
+  d.yaw_deg = camera.yaw * 180.0f / kPi;
+  d.pitch_deg = camera.pitch * 180.0f / kPi;
+  d.distance = camera.distance;
+  d.fov_deg = camera.fov_y_deg;
+  d.target = camera.target;
+  return d;
+}
+
+void applyCamera(render::OrbitCamera& camera, const CameraDesc& desc) {
+  if (desc.yaw_deg) camera.yaw = *desc.yaw_deg * kPi / 180.0f;
+  if (desc.pitch_deg) camera.pitch = *desc.pitch_deg * kPi / 180.0f;
+  if (desc.distance) camera.distance = *desc.distance;
+  if (desc.fov_deg) camera.fov_y_deg = *desc.fov_deg;
+  if (desc.target) camera.target = *desc.target;
+}
+
+std::string saveScene(ViewerUi& ui, const ViewerSession& session, const std::string& path,
+                      bool pick_free_name) {
+  if (path.empty()) throw Error("save scene: no file name given");
+  SceneDesc scene = session.currentScene();
+  scene.camera = cameraDesc(ui.camera);
+  const std::string target = pick_free_name ? freeFileName(path) : path;
+  writeSceneFile(scene, target);
+  if (target != path)
+    ui.report(path + " exists and was left alone; the scene was saved as " + target, false);
+  else
+    ui.report("scene saved to " + target, false);
+  return target;
 }
 
 render::OrbitCamera homeCamera(const ViewerUi& ui, const ViewerSession& session) {

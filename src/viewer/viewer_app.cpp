@@ -31,7 +31,6 @@ namespace ff::viewer {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr float kPi = 3.14159265358979f;
 
 std::string g_glfw_error;
 
@@ -208,11 +207,7 @@ void runAction(const ScriptAction& a, ViewerUi& ui, ViewerSession& session, Fram
         ui.frame_dirty = true;
         break;
       case ScriptAction::Kind::Camera:
-        if (a.camera.yaw_deg) ui.camera.yaw = *a.camera.yaw_deg * kPi / 180.0f;
-        if (a.camera.pitch_deg) ui.camera.pitch = *a.camera.pitch_deg * kPi / 180.0f;
-        if (a.camera.distance) ui.camera.distance = *a.camera.distance;
-        if (a.camera.fov_deg) ui.camera.fov_y_deg = *a.camera.fov_deg;
-        if (a.camera.target) ui.camera.target = *a.camera.target;
+        applyCamera(ui.camera, a.camera);
         break;
       case ScriptAction::Kind::Params: {
         Params p = session.params();
@@ -234,6 +229,9 @@ void runAction(const ScriptAction& a, ViewerUi& ui, ViewerSession& session, Fram
         break;
       case ScriptAction::Kind::Screenshot:
         req.screenshots.push_back(&a);
+        break;
+      case ScriptAction::Kind::Save:
+        saveScene(ui, session, a.save, false);
         break;
       case ScriptAction::Kind::Pause:
         ui.playing = false;
@@ -300,6 +298,10 @@ void initUi(ViewerUi& ui, const ViewerSession& session, const ViewerOptions& opt
   ui.view_w = options.width - ui.view_x;
   ui.view_h = options.height;
   ui.camera = homeCamera(ui, session);
+  if (session.scene().camera) applyCamera(ui.camera, *session.scene().camera);
+  const std::string stem = std::filesystem::path(session.scene().source).stem().string();
+  const std::string name = (stem.empty() || stem[0] == '<' ? session.scene().name : stem) + "_saved.json";
+  std::snprintf(ui.save_path, sizeof ui.save_path, "%s", name.c_str());
 }
 
 }  // namespace

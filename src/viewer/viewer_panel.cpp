@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/error.h"
 #include "render/scene_renderer.h"
 #include "viewer/viewer_ui.h"
 
@@ -79,6 +80,23 @@ void runSection(ViewerUi& ui, ViewerSession& session) {
                        ui.recording.folder().c_str());
   else
     ImGui::TextColored(kDimColour, "into %s", ui.recording.options().dir.c_str());
+  // Save scene...: the file name, then the button. An existing file is kept:
+  // the scene then goes to the next free name, and the message says which.
+  ImGui::SetNextItemWidth(-110.0f);
+  const bool enter = ImGui::InputText("##save_path", ui.save_path, sizeof ui.save_path,
+                                      ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if (ImGui::Button("Save scene...") || enter) {
+    try {
+      saveScene(ui, session, ui.save_path, true);
+    } catch (const Error& e) {
+      ui.report(std::string("scene not saved: ") + e.what(), true);
+    }
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Write the container, fluid, parameters, region, target and camera to this scene file\n"
+        "(flowform run and flowform view read it); an existing file is never replaced");
 }
 
 void targetSection(ViewerUi& ui, ViewerSession& session) {

@@ -86,6 +86,18 @@ void ViewerSession::setParams(const Params& params) {
     sim_->setTarget(active_);
 }
 
+SceneDesc ViewerSession::currentScene() const {
+  SceneDesc s = scene_;
+  s.params = params();
+  s.region = region();
+  s.camera.reset();
+  if (!follow_schedule_) {
+    s.schedule.clear();
+    if (!chose_none_) s.schedule.push_back({0.0, chosen_});
+  }
+  return s;
+}
+
 void ViewerSession::step() {
   applyDueSchedule();
   sim_->step();

@@ -45,6 +45,11 @@ class ViewerSession {
   void setParams(const Params& params);
   const Params& params() const { return sim_->scene().params; }
 
+  // The scene as it stands now, to save: the container and fluid as loaded,
+  // the current parameters and region, and the picked target (or the scene's
+  // schedule while it is followed; nothing after "No control"). No camera.
+  SceneDesc currentScene() const;
+
   // The schedule entries that fall due (when it is followed), then one step.
   void step();
 

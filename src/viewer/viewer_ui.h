@@ -71,6 +71,7 @@ struct ViewerUi {
   std::vector<TargetChoice> choices;
   int chosen = -1;  // index into choices of the user's pick, -1: none yet (scene schedule)
   char typed[512] = {0};
+  char save_path[512] = {0};  // "Save scene..." file name (set from the scene's name at start)
 
   // Parameters being edited; `params_error` set: the edit was rejected and
   // the panel shows it with the message until fixed or discarded.
@@ -107,6 +108,16 @@ void applyRegion(ViewerUi& ui, ViewerSession& session, const RegionDesc& region)
 void applyParams(ViewerUi& ui, ViewerSession& session, const Params& params);
 void resetSimulation(ViewerUi& ui, ViewerSession& session, bool keep_edits);
 void toggleMode(ViewerUi& ui, PickMode mode);
+// Saves the current scene and camera (ViewerSession::currentScene) to `path`.
+// An existing file is never replaced: with pick_free_name the scene goes to
+// the next free name (STEM_2.json, ...) and the message says so; without,
+// ff::Error is thrown (scripts). Returns the path written.
+std::string saveScene(ViewerUi& ui, const ViewerSession& session, const std::string& path,
+                      bool pick_free_name);
+// The camera as a scene's camera block, and a camera block applied to a camera
+// (parts not given stay as they are).
+CameraDesc cameraDesc(const render::OrbitCamera& camera);
+void applyCamera(render::OrbitCamera& camera, const CameraDesc& desc);
 // Starts or stops the recording, reporting where it goes or what it wrote.
 void toggleRecording(ViewerUi& ui, ViewerSession& session);
 // The camera that shows the whole container in the current view (C key).

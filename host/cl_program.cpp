@@ -87,10 +87,32 @@ std::string resolveKernelSource(const std::string& file, std::set<std::string>& 
   return out.str();
 }
 
+GpuRounding gpuRoundingEmulation() {
+  const char* v = std::getenv("FLOWFORM_CL_GPU_ROUNDING");
+  if (!v || !*v || std::string(v) == "off") return GpuRounding::Off;
+  if (std::string(v) == "contract") return GpuRounding::Contract;
+  if (std::string(v) == "fuse-all") return GpuRounding::FuseAll;
+  throw Error(std::string("FLOWFORM_CL_GPU_ROUNDING: '") + v + "' is not one of off, contract, fuse-all");
+}
+
+bool roundsAsTheCpuBackend(const ClDeviceInfo& info) {
+  return info.platform == "Portable Computing Language" && (info.type & CL_DEVICE_TYPE_CPU) != 0 &&
+         info.correctly_rounded_div_sqrt && gpuRoundingEmulation() == GpuRounding::Off;
+}
+
 std::string kernelBuildOptions(const ClDeviceInfo& info) {
   std::string opt = "-cl-std=CL1.2";
   if (info.correctly_rounded_div_sqrt) opt += " -cl-fp32-correctly-rounded-divide-sqrt";
+  if (gpuRoundingEmulation() == GpuRounding::FuseAll) opt += " -cl-unsafe-math-optimizations";
   return opt;
+}
+
+std::string withGpuRoundingEmulation(std::string source) {
+  if (gpuRoundingEmulation() == GpuRounding::Off) return source;
+  const std::string off = "#pragma OPENCL FP_CONTRACT OFF", on = "#pragma OPENCL FP_CONTRACT ON ";
+  for (size_t at = source.find(off); at != std::string::npos; at = source.find(off, at + off.size()))
+    source.replace(at, off.size(), on);
+  return source;
 }
 
 std::string shortBuildLog(const std::string& log) {
@@ -128,7 +150,7 @@ cl::Program buildKernelProgram(const ClContext& cl, const std::vector<std::strin
   std::set<std::string> included;
   std::string source;
   for (const std::string& f : files) source += resolveKernelSource(f, included);
-  return buildProgramSource(cl, source);
+  return buildProgramSource(cl, withGpuRoundingEmulation(source));
 }
 
 cl::Program buildProgramSource(const ClContext& cl, const std::string& source) {

@@ -21,10 +21,34 @@ std::vector<std::string> embeddedKernelFiles();
 // Throws ff::Error naming the file and line of an include it cannot find.
 std::string resolveKernelSource(const std::string& file, std::set<std::string>& included);
 
+// GPU rounding, emulated on a CPU device (docs/GPU.md, "Rounding"). Every
+// kernel file starts with `#pragma OPENCL FP_CONTRACT OFF`, so that a * b + c
+// rounds twice, as in the C++ backend; a GPU compiler may still fuse it into
+// one fused multiply-add. FLOWFORM_CL_GPU_ROUNDING (for tests) builds the
+// kernels as such a compiler would:
+//   contract: the pragmas switched to ON: a * b + c within one expression
+//             becomes fma(a, b, c) (OpenCL C's default);
+//   fuse-all: also -cl-unsafe-math-optimizations: products fuse with sums
+//             across statements and functions too, and sums may be
+//             reassociated (more than a GPU compiler without fast-math does).
+// Unset or "off": the kernels as written. Any other value throws ff::Error.
+enum class GpuRounding { Off, Contract, FuseAll };
+GpuRounding gpuRoundingEmulation();
+
+// Whether the kernels round exactly as the OpenMP backend on this device:
+// PoCL (its compiler honours FP_CONTRACT OFF, its division and sqrt are
+// correctly rounded) with no GPU rounding emulated. The equivalence tests
+// compare bit for bit there, and within the GPU tolerances elsewhere.
+bool roundsAsTheCpuBackend(const ClDeviceInfo& info);
+
 // The build options for a device: OpenCL C 1.2, and correctly rounded
 // division and sqrt where the device has them, so that the kernels' float
-// arithmetic matches the CPU backend's.
+// arithmetic matches the CPU backend's (plus the fuse-all emulation's option).
 std::string kernelBuildOptions(const ClDeviceInfo& info);
+
+// The program source with the FP_CONTRACT OFF pragmas switched on when
+// gpuRoundingEmulation() asks for it; unchanged otherwise.
+std::string withGpuRoundingEmulation(std::string source);
 
 // A build log for a message: all of a short log; of a long one the first
 // lines that report errors (at most 12 lines, 2000 characters), and the whole

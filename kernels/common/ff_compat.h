@@ -5,8 +5,12 @@
 //   * only `float`, `int`, `uint`, the ff_float3 / ff_quat helpers below and
 //     the value type T of FF_GENERIC formulas;
 //   * every function is FF_FN (inline, no state);
-//   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX so both sides call
-//     the single-precision functions.
+//   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX / FF_FMOD so both
+//     sides call the single-precision functions, each correctly rounded (sqrt
+//     where the device has -cl-fp32-correctly-rounded-divide-sqrt); sin and
+//     cos, which OpenCL does not round correctly, are written out in float
+//     arithmetic (ff_trig.h), and so are dot and cross (below). FF_CBRT is
+//     for the host only (not correctly rounded in OpenCL).
 #ifndef FF_COMPAT_H
 #define FF_COMPAT_H
 
@@ -17,14 +21,11 @@ typedef float4 ff_quat; /* (x, y, z, w) */
 #define FF_F3(a, b, c) ((float3)((a), (b), (c)))
 #define FF_Q(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define FF_SQRT(a) sqrt(a)
-#define FF_SIN(a) sin(a)
 #define FF_CBRT(a) cbrt(a)
-#define FF_COS(a) cos(a)
+#define FF_FMOD(a, b) fmod((a), (b))
 #define FF_FABS(a) fabs(a)
 #define FF_FMIN(a, b) fmin((a), (b))
 #define FF_FMAX(a, b) fmax((a), (b))
-#define FF_DOT(a, b) dot((a), (b))
-#define FF_CROSS(a, b) cross((a), (b))
 #define FF_ZERO_OF(T) ((T)(0.0f))
 #define FF_GENERIC(def, name) def(float, name) def(float8, name##_8)
 #else
@@ -67,15 +68,11 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
 #define FF_F3(a, b, c) (ff_float3{(a), (b), (c)})
 #define FF_Q(x, y, z, w) (ff_quat{(x), (y), (z), (w)})
 #define FF_SQRT(a) std::sqrt((float)(a))
-#define FF_SIN(a) std::sin((float)(a))
 #define FF_CBRT(a) std::cbrt((float)(a))
-#define FF_COS(a) std::cos((float)(a))
+#define FF_FMOD(a, b) std::fmod((float)(a), (float)(b))
 #define FF_FABS(a) std::fabs((float)(a))
 #define FF_FMIN(a, b) std::fmin((float)(a), (float)(b))
 #define FF_FMAX(a, b) std::fmax((float)(a), (float)(b))
-#define FF_DOT(a, b) ((a).x * (b).x + (a).y * (b).y + (a).z * (b).z)
-#define FF_CROSS(a, b) \
-  FF_F3((a).y*(b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z, (a).x * (b).y - (a).y * (b).x)
 #define FF_ZERO_OF(T) (T{})
 #define FF_GENERIC(def, name) \
   template <class FF_T>       \
@@ -90,6 +87,13 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
  * operations. Such a body uses only + - * /, comparisons combined with & and
  * the selection c ? a : FF_ZERO_OF(T) (for vectors both sides are computed
  * and the unselected lanes dropped, so those must not trap: IEEE floats do not). */
+
+/* dot and cross written out, the same on both sides: OpenCL's dot() and
+ * cross() builtins may sum in another order or fuse the products (on a GPU
+ * they do), so the kernels would round differently from the C++ backend. */
+#define FF_DOT(a, b) ((a).x * (b).x + (a).y * (b).y + (a).z * (b).z)
+#define FF_CROSS(a, b) \
+  FF_F3((a).y*(b).z - (a).z * (b).y, (a).z * (b).x - (a).x * (b).z, (a).x * (b).y - (a).y * (b).x)
 
 #define FF_PI 3.14159265358979323846f
 

@@ -5,6 +5,7 @@
 #ifndef FF_ROTATION_H
 #define FF_ROTATION_H
 #include "ff_compat.h"
+#include "ff_trig.h"
 
 typedef struct {
   ff_float3 c0, c1, c2; /* columns */
@@ -72,8 +73,8 @@ FF_FN ff_quat ff_extract_rotation(ff_mat3 a, ff_quat q, int max_iter) {
     float w = ff_length(omega);
     if (w < 1.0e-9f) break;
     float half_angle = 0.5f * w; /* not `half`: a type name in OpenCL C */
-    float s = FF_SIN(half_angle) / w;
-    ff_quat dq = FF_Q(omega.x * s, omega.y * s, omega.z * s, FF_COS(half_angle));
+    float s = ff_sin(half_angle) / w;
+    ff_quat dq = FF_Q(omega.x * s, omega.y * s, omega.z * s, ff_cos(half_angle));
     q = ff_quat_normalize(ff_quat_mul(dq, q));
   }
   return q;

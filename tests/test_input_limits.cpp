@@ -77,6 +77,15 @@ TEST(InputLimits, HugeFluidBlocksAreRefusedBeforeAllocating) {
             "{" + big + R"("fluid": [{"origin": [0, 0, 0], "dims": [300, 300, 300]}]})",
             {"fluid[0].dims", "2.7e+07 fluid particles need about",
              "over the limit of 4 GiB (set by --max-memory)"}},
+           // Overlapping particles: many times the rest density, junk after one step.
+           {"spacing",
+            "{" + big + R"("fluid": [{"origin": [0, 0, 0], "dims": [10, 10, 10], "spacing": 1e-9}]})",
+            {"fluid[0].spacing", "must be in [0.5, 10] times the rest spacing"}},
+           // A container whose squared lengths overflow a float.
+           {"container1e30",
+            R"({"container": {"min": [0, 0, 0], "max": [1e30, 1, 1]},
+                "fluid": [{"origin": [0, 0, 0], "dims": [10, 10, 10]}]})",
+            {"container.max[0]", "must lie within -1e6 .. 1e6 m (got 1e+30)"}},
            // Many small blocks add up: the block that crosses the limit is named.
            {"manyblocks",
             "{" + big + R"("fluid": [{"origin": [0, 0, 0], "dims": [200, 200, 200]},

@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "core/embedded.h"
 #include "core/error.h"
@@ -201,6 +202,13 @@ ContainerDesc readContainer(const Reader& r, const json& j) {
   ContainerDesc c;
   c.min = r.vec3(r.required(j, "container", "min"), "container.min");
   c.max = r.vec3(r.required(j, "container", "max"), "container.max");
+  // Lengths and their squares stay finite in float (the grid, the wall terms).
+  constexpr float kMaxCoordinate = 1.0e6f;
+  for (const auto& [v, key] :
+       {std::pair<const Vec3&, const char*>{c.min, "container.min"}, {c.max, "container.max"}})
+    for (int i = 0; i < 3; ++i)
+      if (!(std::fabs(v[i]) <= kMaxCoordinate))
+        r.fail(element(key, size_t(i)), "must lie within -1e6 .. 1e6 m (got " + fmt(v[i]) + ")");
   for (int i = 0; i < 3; ++i)
     if (!(c.min[i] < c.max[i]))
       r.fail("container",
@@ -540,6 +548,12 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
     const FluidBlockDesc& b = scene.fluid.back();
     particles += double(b.dims[0]) * double(b.dims[1]) * double(b.dims[2]);
     checkFluidCount(particles, source, child(element("fluid", i), "dims"));
+    // Particles much closer than the rest spacing start at many times the
+    // rest density: the first steps blow them apart (junk, not a liquid).
+    const double rest = scene.params.fluid.restSpacing();
+    if (b.spacing > 0 && !(b.spacing >= 0.5 * rest && b.spacing <= 10.0 * rest))
+      r.fail(child(element("fluid", i), "spacing"),
+             "must be in [0.5, 10] times the rest spacing " + fmt(rest) + " m (got " + fmt(b.spacing) + ")");
   }
 
   if (root.contains("region")) scene.region = readRegion(r, root["region"], "region");

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "temp_dir.h"
+#include "test_meshes.h"
 
 namespace fftest {
 
@@ -31,18 +32,12 @@ inline CliResult runShell(const std::string& cmd) {
   return r;
 }
 
-// Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the shared test meshes;
-// `env` holds further assignments for its environment (e.g. "PATH=/nonexistent "),
-// which may override FLOWFORM_MESH_PATH.
+// Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the folders the tests search
+// for meshes (test_meshes.h); `env` holds further assignments for its
+// environment (e.g. "PATH=/nonexistent "), which may override FLOWFORM_MESH_PATH.
 inline CliResult runFlowform(const std::string& args, const std::string& env = "") {
-  return runShell("FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' " + env + " '" + std::string(FF_FLOWFORM_EXE) +
-                  "' " + args);
-}
-
-// A fresh, empty folder in the temp directory, unique to this process and
-// removed when it exits.
-inline std::filesystem::path freshTempDir(const std::string& name) {
-  return scratchDir(name);
+  return runShell("FLOWFORM_MESH_PATH='" + meshSearchPath() + "' " + env + " '" +
+                  std::string(FF_FLOWFORM_EXE) + "' " + args);
 }
 
 }  // namespace fftest

@@ -16,7 +16,6 @@
 namespace {
 
 namespace fs = std::filesystem;
-using fftest::freshTempDir;
 using fftest::runFlowform;
 
 struct Row {
@@ -86,7 +85,7 @@ TEST(BenchStats, MedianMinMaxMatchASortedCopy) {
 // A small control sweep on every backend: per backend and case, one row per
 // phase plus a total whose per-step sums bound it by the phases' extremes.
 TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
-  fs::path d = freshTempDir("bench_sweep");
+  const fftest::TempDir d("bench_sweep");
   const fs::path csv = d / "b.csv";
   auto r = runFlowform(
       "bench --control-sweep --max-control 1000 --sweep-steps 4 --sweep-warmup 1 --threads 2 "
@@ -139,7 +138,8 @@ TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
 
 // Table 1: the four meshes at the paper's control-particle counts.
 TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
-  fs::path d = freshTempDir("bench_table1");
+  FF_SCENE_MESHES_OR_SKIP();
+  const fftest::TempDir d("bench_table1");
   const fs::path csv = d / "t.csv";
   auto r = runFlowform("bench --table1 --backend cpu --steps 1 --warmup 0 --threads 2 --csv '" +
                        csv.string() + "'");
@@ -160,7 +160,7 @@ TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
 }
 
 TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
-  fs::path d = freshTempDir("bench_bad");
+  const fftest::TempDir d("bench_bad");
   struct Case {
     std::string args, env, says;
   };

@@ -48,7 +48,7 @@ std::vector<std::string> lines(const std::string& text) {
 }
 
 TEST(Checkpoint, ResumeGivesByteIdenticalExports) {
-  const fs::path d = fftest::freshTempDir("ckpt_resume");
+  const fftest::TempDir d("ckpt_resume");
   spit(d / "s.json", kScene);
   const std::string scene = "'" + (d / "s.json").string() + "' --backend cpu";
   // 1 s with a checkpoint at its end.
@@ -84,11 +84,10 @@ TEST(Checkpoint, ResumeGivesByteIdenticalExports) {
   ASSERT_EQ(r.size(), 251u);
   EXPECT_EQ(s[0], r[0]);
   for (size_t i = 1; i < r.size(); ++i) ASSERT_EQ(s[250 + i], r[i]) << "row " << i;
-  fs::remove_all(d);
 }
 
 TEST(Checkpoint, SigintLeavesALoadableCheckpointAndCompleteFiles) {
-  const fs::path d = fftest::freshTempDir("ckpt_sigint");
+  const fftest::TempDir d("ckpt_sigint");
   spit(d / "s.json", kScene);
   const std::string csv = (d / "m.csv").string();
   // Start a long run, wait until it has written a few metrics rows, interrupt it.
@@ -129,20 +128,17 @@ TEST(Checkpoint, SigintLeavesALoadableCheckpointAndCompleteFiles) {
       fftest::runFlowform("run --backend cpu --resume '" + path + "' --steps " + std::to_string(step + 2));
   EXPECT_EQ(resumed.code, 0) << resumed.out;
   EXPECT_NE(resumed.out.find("2 steps"), std::string::npos) << resumed.out;
-  fs::remove_all(d);
 }
 
 class CheckpointFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fftest::freshTempDir("ckpt_file");
     Simulation sim(ff::parseScene(kScene, "ckpt.json", ""), std::make_unique<ff::CpuBackend>(2));
     for (int i = 0; i < 3; ++i) sim.step();
     good = (dir / "good.ffck").string();
     ff::writeCheckpoint(good, sim);
     bytes = slurp(good);
   }
-  void TearDown() override { fs::remove_all(dir); }
   using Simulation = ff::Simulation;
   // The message of loading `text` as a checkpoint file ("" if it loads).
   std::string loadError(const std::string& text) {
@@ -155,7 +151,7 @@ class CheckpointFile : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir;
+  const fftest::TempDir dir{"ckpt_file"};
   std::string good, bytes;
 };
 

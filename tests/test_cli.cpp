@@ -21,16 +21,12 @@ Result run(const std::string& args) {
   return fftest::runFlowform(args);
 }
 
-fs::path tempDir(const std::string& name) {
-  return fftest::freshTempDir("cli_" + name);
-}
-
 void write(const fs::path& p, const std::string& text) {
   std::ofstream(p) << text;
 }
 
 TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
-  fs::path d = tempDir("default");
+  const fftest::TempDir d("cli_default");
   Result r = run("run --backend cpu --steps 3 --metrics '" + (d / "m.csv").string() + "' --export '" +
                  d.string() + "' --export-every 3 --format ply");
   ASSERT_EQ(r.code, 0) << r.out;
@@ -47,7 +43,6 @@ TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
   EXPECT_TRUE(fs::exists(d / "fluid_00000.ply"));
   EXPECT_TRUE(fs::exists(d / "fluid_00001.ply"));
   EXPECT_TRUE(fs::exists(d / "control_00001.ply"));
-  fs::remove_all(d);
 }
 
 TEST(Cli, MissingSceneFileIsAOneLineError) {
@@ -58,25 +53,23 @@ TEST(Cli, MissingSceneFileIsAOneLineError) {
 }
 
 TEST(Cli, BadSceneFieldNamesFileAndKey) {
-  fs::path d = tempDir("badscene");
+  const fftest::TempDir d("cli_badscene");
   write(d / "bad.json",
         R"({"fluid": [{"origin": [0,0,0], "dims": [4,4,4]}], "params": {"fluid": {"viscosity": -1}}})");
   Result r = run("run '" + (d / "bad.json").string() + "' --steps 1");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("bad.json"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("params.fluid.viscosity"), std::string::npos) << r.out;
-  fs::remove_all(d);
 }
 
 TEST(Cli, BrokenMeshNamesTheMeshFile) {
-  fs::path d = tempDir("badmesh");
+  const fftest::TempDir d("cli_badmesh");
   write(d / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
   write(d / "s.json", R"({"fluid": [{"origin": [0.1,0,0.1], "dims": [6,6,6]}], "target": "broken.obj"})");
   Result r = run("run '" + (d / "s.json").string() + "' --steps 1");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.out.find("broken.obj"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
-  fs::remove_all(d);
 }
 
 TEST(Cli, UnwritableExportFolderIsAnError) {

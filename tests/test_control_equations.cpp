@@ -132,18 +132,23 @@ TEST(ControlEquations, ControlScaleEq5) {
     EXPECT_NEAR(c.fields().s[i], want[i], 1e-5) << "control particle " << i;
 }
 
+// Three control particles within reach of the fluid particles at (0.1, 0.1, 0.1)
+// and (0.112, 0.095, 0.104) of the next two tests.
+const std::vector<V3> kThreeControlParticles = {
+    {0.110, 0.100, 0.100}, {0.100, 0.085, 0.120}, {0.090, 0.112, 0.093}};
+
 // Eq. 4 alone (w_v = 0, no gravity compensation): f_a(e) = w_a sum_i s_i
 // (p_i - x_e) / |p_i - x_e| W(|p_i - x_e|), with s_i of eq. 5.
 TEST(ControlEquations, AttractionEq4) {
   ff::Params p = paper();
   p.control.velocity = 0.0f;
   p.control.gravity_compensation = 0.0f;
-  const double r = p.control.radius, wa = p.control.attraction;
   Fluid fl;
   fl.add({0.100, 0.100, 0.100}, {0.3, -0.2, 0.1});  // its velocity must not matter
   fl.add({0.112, 0.095, 0.104});
+  const double r = p.control.radius, wa = p.control.attraction;
   fl.add({0.300, 0.300, 0.300});  // out of every control particle's reach
-  const std::vector<V3> cps = {{0.110, 0.100, 0.100}, {0.100, 0.085, 0.120}, {0.090, 0.112, 0.093}};
+  const std::vector<V3>& cps = kThreeControlParticles;
   // Large enough that the fluid around the first control particle matters in
   // eq. 5 (0 < s < 1), not so large that it clamps.
   const float volume = 2.0e-6f;
@@ -185,7 +190,7 @@ TEST(ControlEquations, VelocityForceEq6Implicit) {
   Fluid fl;
   fl.add({0.100, 0.100, 0.100}, {0.3, -0.2, 0.1});
   fl.add({0.112, 0.095, 0.104}, {0.0, 0.0, -0.5});
-  const std::vector<V3> cps = {{0.110, 0.100, 0.100}, {0.100, 0.085, 0.120}, {0.090, 0.112, 0.093}};
+  const std::vector<V3>& cps = kThreeControlParticles;
   const std::vector<V3> cvs = {{1.0, 0.0, 0.0}, {0.0, 0.8, 0.0}, {-0.2, 0.1, 0.6}};
   const float volume = 2.0e-6f, dt = 0.004f;
   ff::Controller c;

@@ -10,20 +10,9 @@
 #include "cpu/backend_cpu.h"
 #include "ff_sph.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 
 namespace {
-
-ff::SceneDesc boxScene(ff::Vec3 box_max, int nx, int ny, int nz, ff::Vec3 origin) {
-  ff::SceneDesc s;
-  s.source = "test";
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = box_max;
-  ff::FluidBlockDesc b;
-  b.origin = origin;
-  b.dims[0] = nx, b.dims[1] = ny, b.dims[2] = nz;
-  s.fluid.push_back(b);
-  return s;
-}
 
 TEST(FluidPhysics, NoDensityDeficiencyAtTheWalls) {
   // A lattice at rest spacing filling the box exactly: with the analytic wall
@@ -31,7 +20,7 @@ TEST(FluidPhysics, NoDensityDeficiencyAtTheWalls) {
   ff::Params p;
   const float sp = p.fluid.restSpacing();
   const int n = 12;
-  ff::SceneDesc s = boxScene(ff::Vec3(n * sp, n * sp, n * sp), n, n, n, ff::Vec3(0, 0, 0));
+  ff::SceneDesc s = fftest::blockScene(ff::Vec3(n * sp, n * sp, n * sp), ff::Vec3(0, 0, 0), n, n, n);
   auto backend = std::make_unique<ff::CpuBackend>();
   ff::CpuBackend* cpu = backend.get();
   ff::Simulation sim(s, std::move(backend));
@@ -103,7 +92,7 @@ TEST(FluidPhysics, RestingColumnIsHydrostatic) {
   p.fluid.gravity[1] = -0.3f;
   const float sp = p.fluid.restSpacing();
   const int nx = 8, ny = 20, nz = 8;
-  ff::SceneDesc s = boxScene(ff::Vec3(nx * sp, 0.3f, nz * sp), nx, ny, nz, ff::Vec3(0, 0, 0));
+  ff::SceneDesc s = fftest::blockScene(ff::Vec3(nx * sp, 0.3f, nz * sp), ff::Vec3(0, 0, 0), nx, ny, nz);
   s.params = p;
   auto backend = std::make_unique<ff::CpuBackend>();
   ff::CpuBackend* cpu = backend.get();
@@ -164,7 +153,8 @@ TEST(FluidPhysics, RestingColumnIsHydrostatic) {
 
 TEST(FluidPhysics, NoParticleLeavesTheBoxInAViolentScene) {
   ff::Params p;
-  ff::SceneDesc s = boxScene(ff::Vec3(0.12f, 0.12f, 0.12f), 12, 12, 12, ff::Vec3(0.02f, 0.02f, 0.02f));
+  ff::SceneDesc s =
+      fftest::blockScene(ff::Vec3(0.12f, 0.12f, 0.12f), ff::Vec3(0.02f, 0.02f, 0.02f), 12, 12, 12);
   s.fluid[0].velocity = ff::Vec3(6.0f, 9.0f, -4.0f);  // thrown into a corner at speed
   s.params.fluid.gravity[1] = -30.0f;
   auto backend = std::make_unique<ff::CpuBackend>();

@@ -27,7 +27,7 @@ TEST(ExportFolder, FrameNamingIsNarrow) {
 }
 
 TEST(ExportFolder, RefusesAnotherRunsFramesAndCleansOnlyThemWithOverwrite) {
-  fs::path d = fftest::freshTempDir("export_folder");
+  const fftest::TempDir d("export_folder");
   for (const char* name : {"fluid_00000.vtu", "fluid.pvd", "notes.txt", "fluid_notes.vtu"})
     std::ofstream(d / name) << "x";
   fs::create_directories(d / "fluid_00001.vtu");  // a folder of that name is the user's, kept
@@ -47,14 +47,12 @@ TEST(ExportFolder, RefusesAnotherRunsFramesAndCleansOnlyThemWithOverwrite) {
   EXPECT_TRUE(fs::exists(d / "fluid_notes.vtu"));
   EXPECT_TRUE(fs::is_directory(d / "fluid_00001.vtu"));
   ff::prepareExportFolder(d.string(), false);  // nothing of ours left: accepted
-  fs::remove_all(d);
 }
 
 TEST(ExportFolder, ANonFolderIsAnError) {
-  fs::path d = fftest::freshTempDir("export_file");
+  const fftest::TempDir d("export_file");
   std::ofstream(d / "file") << "x";
   EXPECT_THROW(ff::prepareExportFolder((d / "file").string(), false), ff::Error);
-  fs::remove_all(d);
 }
 
 TEST(ExportOptions, FormatList) {

@@ -27,8 +27,8 @@ using fftest::TempDir;
 
 // `flowform ARGS` with at most 20 s and 2 GB of address space.
 CliResult runLimited(const std::string& args) {
-  return fftest::runShell("(ulimit -v 2000000; FLOWFORM_MESH_PATH='" FF_SHARED_MESHES "' timeout 20 '" +
-                          std::string(FF_FLOWFORM_EXE) + "' " + args + ")");
+  return fftest::runShell("(ulimit -v 2000000; FLOWFORM_MESH_PATH='" + fftest::meshSearchPath() +
+                          "' timeout 20 '" + std::string(FF_FLOWFORM_EXE) + "' " + args + ")");
 }
 
 const char* kBase =

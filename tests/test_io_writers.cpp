@@ -23,11 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A self-cleaning folder for one test.
-struct TempDir : fftest::TempDir {
-  TempDir() : fftest::TempDir("io") {}
-};
-
 std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream ss;
@@ -82,7 +77,7 @@ static ff::PointCloud plyCloud(size_t n, const float* const* a, const uint32_t* 
 }
 
 TEST(PlyWriter, RoundTripWithIntIdsAndTime) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const size_t n = 5;
   std::vector<float> a[6];
   std::vector<uint32_t> id(n);
@@ -121,7 +116,7 @@ TEST(PlyWriter, RoundTripWithIntIdsAndTime) {
 }
 
 TEST(PlyWriter, VectorAttributeIsThreeProperties) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   float v[2] = {1.0f, 2.0f};
   ff::PointCloud c{2, v, v, v, {ff::PointAttribute::vector("rest", v, v, v)}, 0.0, "test"};
   const std::string path = dir.file("vec.ply");
@@ -138,7 +133,7 @@ TEST(PlyWriter, VectorAttributeIsThreeProperties) {
 }
 
 TEST(PlyWriter, EmptyCloud) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const std::string path = dir.file("empty.ply");
   ff::writePly(path, ff::PointCloud{});
   Ply ply = readPly(path);
@@ -147,7 +142,7 @@ TEST(PlyWriter, EmptyCloud) {
 }
 
 TEST(PlyWriter, ErrorNamesPathAndLeavesNoFile) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const std::string path = dir.file("no_such_folder/out.ply");
   float v[1] = {0.0f};
   try {
@@ -163,7 +158,7 @@ TEST(PlyWriter, ErrorNamesPathAndLeavesNoFile) {
 }
 
 TEST(PlyWriter, OverwritesExistingFile) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const std::string path = dir.file("again.ply");
   float v[2] = {1.0f, 2.0f};
   ff::writePly(path, ff::PointCloud{2, v, v, v, {}, 0.0, "test"});
@@ -173,7 +168,7 @@ TEST(PlyWriter, OverwritesExistingFile) {
 }
 
 TEST(MetricsCsv, HeaderAndRowsReadBack) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const std::string path = dir.file("metrics.csv");
   ff::MetricsCsv csv;
   csv.open(path, {"step", "time", "error", "note,with comma"});
@@ -201,7 +196,7 @@ TEST(MetricsCsv, HeaderAndRowsReadBack) {
 }
 
 TEST(MetricsCsv, WrongValueCountThrows) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   ff::MetricsCsv csv;
   csv.open(dir.file("m.csv"), {"a", "b"});
   EXPECT_THROW(csv.row(1.0), ff::Error);
@@ -210,7 +205,7 @@ TEST(MetricsCsv, WrongValueCountThrows) {
 }
 
 TEST(MetricsCsv, OpenErrorNamesPath) {
-  TempDir dir;
+  const fftest::TempDir dir("io");
   const std::string path = dir.file("missing_folder/m.csv");
   ff::MetricsCsv csv;
   try {

@@ -42,6 +42,7 @@
 #include "host/cl_errors.h"
 #include "host/cl_program.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -122,18 +123,9 @@ void expectGridEqual(const char* what, const ff::UniformGrid& g, const ff::OpenC
 // 3094 particles: not a multiple of 8 (the lanes, the padding) nor of any
 // work-group size, so the last work-group and the last 8 lanes are partial.
 ff::SceneDesc smallScene() {
-  ff::SceneDesc s;
-  s.source = "test";
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = ff::Vec3(0.2f, 0.2f, 0.2f);
-  ff::FluidBlockDesc b;
-  b.origin = ff::Vec3(0.055f, 0.0f, 0.055f);
-  b.dims[0] = 13, b.dims[1] = 17, b.dims[2] = 14;  // 3094 particles
-  s.fluid.push_back(b);
-  ff::TargetSpec t;
-  t.kind = ff::TargetKind::Sphere;
-  t.control_count = 600;
-  s.schedule.push_back({0.0, t});
+  ff::SceneDesc s =
+      fftest::blockScene(ff::Vec3(0.2f, 0.2f, 0.2f), ff::Vec3(0.055f, 0.0f, 0.055f), 13, 17, 14);
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 600)});
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "host/backend_factory.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 #include "viewer/recording.h"
 
 namespace fs = std::filesystem;
@@ -34,20 +35,14 @@ std::vector<double> pvdTimes(const fs::path& p) {
 }
 
 ff::SceneDesc smallScene() {
-  ff::SceneDesc s;
+  ff::SceneDesc s =
+      fftest::blockScene(ff::Vec3(0.1f, 0.1f, 0.1f), ff::Vec3(0.03f, 0.0f, 0.03f), 5, 5, 5, "small.json");
   s.name = "small";
-  s.source = "small.json";
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = ff::Vec3(0.1f, 0.1f, 0.1f);
-  ff::FluidBlockDesc b;
-  b.origin = ff::Vec3(0.03f, 0.0f, 0.03f);
-  b.dims[0] = b.dims[1] = b.dims[2] = 5;
-  s.fluid.push_back(b);
   return s;
 }
 
 TEST(ViewerRecording, TakesInFoldersOfTheirOwnAtTheFrameRate) {
-  const fs::path d = fftest::freshTempDir("recording");
+  const fftest::TempDir d("recording");
   fs::create_directories(d / "take_003");  // the user's folder of that name: skipped, kept
   std::ofstream(d / "take_003" / "mine.txt") << "x";
   ff::Simulation sim(smallScene(), ff::makeBackend("cpu", -1, 2, nullptr));
@@ -83,7 +78,6 @@ TEST(ViewerRecording, TakesInFoldersOfTheirOwnAtTheFrameRate) {
   EXPECT_NEAR(t[2], 0.080, 1e-6);
   EXPECT_TRUE(fs::exists(d / "take_002" / "fluid_00002.ply"));
   EXPECT_FALSE(fs::exists(d / "take_002" / "fluid_00003.ply"));
-  fs::remove_all(d);
 }
 
 TEST(ViewerRecording, AnUnwritableFolderIsReportedAndNothingRecords) {
@@ -102,7 +96,7 @@ TEST(ViewerRecording, AnUnwritableFolderIsReportedAndNothingRecords) {
 }
 
 TEST(RenderCli, ExportsEveryRenderedFrame) {
-  const fs::path d = fftest::freshTempDir("render_export");
+  const fftest::TempDir d("render_export");
   std::ofstream(d / "s.json") << R"({"name": "tiny", "container": {"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]},
     "fluid": [{"origin": [0.03, 0.0, 0.03], "dims": [6, 6, 6]}]})";
   const fftest::CliResult r = fftest::runFlowform(
@@ -117,7 +111,6 @@ TEST(RenderCli, ExportsEveryRenderedFrame) {
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(t[size_t(k)], 0.008 * k, 1e-6);
   EXPECT_TRUE(fs::exists(d / "exp" / "fluid_00002.bgeo"));
   EXPECT_TRUE(fs::exists(d / "png" / "frame_00002.png"));
-  fs::remove_all(d);
 }
 
 }  // namespace

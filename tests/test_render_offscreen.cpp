@@ -22,6 +22,7 @@
 #include "render/offscreen_context.h"
 #include "render/scene_renderer.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -200,32 +201,17 @@ TEST(RenderOffscreen, NothingButBackgroundWithoutLiquid) {
 }
 
 ff::SceneDesc smallScene() {
-  ff::SceneDesc s;
-  s.source = "render test";
-  s.container.min = Vec3(0.0f, 0.0f, 0.0f);
-  s.container.max = Vec3(0.2f, 0.2f, 0.2f);
-  ff::FluidBlockDesc b;
-  b.origin = Vec3(0.055f, 0.0f, 0.055f);
-  b.dims[0] = 14, b.dims[1] = 12, b.dims[2] = 14;
-  s.fluid.push_back(b);
-  return s;
-}
-
-ff::TargetSpec target(ff::TargetKind kind, int control_count) {
-  ff::TargetSpec t;
-  t.kind = kind;
-  t.control_count = control_count;
-  return t;
+  return fftest::blockScene(Vec3(0.2f, 0.2f, 0.2f), Vec3(0.055f, 0.0f, 0.055f), 14, 12, 14, "render test");
 }
 
 TEST(RenderOffscreen, TargetChangeShowsWhereTheLiquidMoved) {
   ff::Simulation sim(smallScene(), std::make_unique<ff::CpuBackend>());
-  sim.setTarget(target(ff::TargetKind::Sphere, 400));
+  sim.setTarget(fftest::target(ff::TargetKind::Sphere, 400));
   for (int i = 0; i < 60; ++i) sim.step();
   const FrameData a = ff::render::captureFrame(sim);
   ASSERT_FALSE(a.ghost.empty());
   // A flat box, wider than the ball: the liquid spreads sideways.
-  ff::TargetSpec box = target(ff::TargetKind::Box, 400);
+  ff::TargetSpec box = fftest::target(ff::TargetKind::Box, 400);
   box.box_size = Vec3(3.0f, 0.6f, 3.0f);
   sim.setTarget(box);
   for (int i = 0; i < 60; ++i) sim.step();
@@ -263,16 +249,11 @@ TEST(RenderOffscreen, TargetChangeShowsWhereTheLiquidMoved) {
 using fftest::CliResult;
 using fftest::runFlowform;
 
-fs::path freshDir(const std::string& name) {
-  return fftest::freshTempDir("render_" + name);
-}
-
 // A scene that simulates in moments: 512 particles, a sphere target.
 fs::path tinyScene(const fs::path& dir) {
   const fs::path p = dir / "tiny.json";
-  std::ofstream(p) << R"({"name": "tiny", "container": {"min": [0, 0, 0], "max": [0.12, 0.12, 0.12]},
-    "fluid": [{"origin": [0.035, 0.0, 0.035], "dims": [8, 8, 8]}],
-    "target": {"shape": "sphere", "control_count": 100}})";
+  std::ofstream(p) << fftest::blockSceneJson("tiny", 0.12, 0.035, 0.035, 8,
+                                             R"("target": {"shape": "sphere", "control_count": 100})");
   return p;
 }
 
@@ -292,7 +273,7 @@ bool pngSize(const fs::path& p, int& w, int& h) {
 const char* kCliEnv = "OMP_NUM_THREADS=2";
 
 TEST(RenderCli, WritesTheFramesAsPngsOfTheAskedSize) {
-  const fs::path d = freshDir("frames");
+  const fftest::TempDir d("render_frames");
   const fs::path out = d / "out";
   const CliResult r = runFlowform("render '" + tinyScene(d).string() + "' --frames 2 --every 2 --width 160 " +
                                       "--height 120 --backend cpu --out '" + out.string() + "'",
@@ -316,11 +297,10 @@ TEST(RenderCli, WritesTheFramesAsPngsOfTheAskedSize) {
     EXPECT_GT(hi - lo, 50) << name;
   }
   EXPECT_FALSE(fs::exists(out / "frame_00002.png"));
-  fs::remove_all(d);
 }
 
 TEST(RenderCli, BadInputIsRefusedWithTheReason) {
-  const fs::path d = freshDir("bad");
+  const fftest::TempDir d("render_bad");
   const std::string scene = "'" + tinyScene(d).string() + "' ";
   const std::string out = " --out '" + (d / "o").string() + "'";
   struct Case {
@@ -342,11 +322,10 @@ TEST(RenderCli, BadInputIsRefusedWithTheReason) {
     EXPECT_EQ(r.out.find("internal error"), std::string::npos) << c.args << "\n" << r.out;
   }
   EXPECT_FALSE(fs::exists(d / "o" / "frame_00000.png"));
-  fs::remove_all(d);
 }
 
 TEST(RenderCli, VideoWithoutFfmpegStopsBeforeAnyWork) {
-  const fs::path d = freshDir("video");
+  const fftest::TempDir d("render_video");
   const fs::path empty_bin = d / "bin";  // a PATH with no ffmpeg on it
   fs::create_directories(empty_bin);
   const fs::path out = d / "frames";
@@ -359,7 +338,6 @@ TEST(RenderCli, VideoWithoutFfmpegStopsBeforeAnyWork) {
   EXPECT_NE(r.out.find("apt-get install ffmpeg"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out)) << "the check comes before any work, so not even the folder is made";
   EXPECT_FALSE(fs::exists(d / "v.mp4"));
-  fs::remove_all(d);
 }
 
 }  // namespace

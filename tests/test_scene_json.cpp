@@ -14,6 +14,7 @@
 #include "core/params.h"
 #include "scene/scene.h"
 #include "temp_dir.h"
+#include "test_meshes.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -57,9 +58,11 @@ std::string sceneFile(const std::string& name) {
   return std::string(FF_SOURCE_DIR) + "/scenes/" + name;
 }
 
+// Each test sees FLOWFORM_MESH_PATH = the folders the tests search for meshes
+// (test_meshes.h), restored afterwards; those that need a mesh skip without it.
 class SceneJson : public ::testing::Test {
  protected:
-  void SetUp() override { setenv("FLOWFORM_MESH_PATH", FF_SHARED_MESHES, 1); }
+  fftest::ScopedEnv mesh_path_{"FLOWFORM_MESH_PATH", fftest::meshSearchPath().c_str()};
 };
 
 }  // namespace
@@ -82,6 +85,7 @@ TEST_F(SceneJson, BaseSceneParses) {
 }
 
 TEST_F(SceneJson, EverySceneFileParses) {
+  FF_SCENE_MESHES_OR_SKIP();
   int n = 0;
   for (const auto& entry : fs::directory_iterator(std::string(FF_SOURCE_DIR) + "/scenes")) {
     if (entry.path().extension() != ".json") continue;
@@ -120,6 +124,7 @@ TEST_F(SceneJson, DefaultSceneWorksWithoutMeshPath) {
 }
 
 TEST_F(SceneJson, TableOneScenes) {
+  FF_SCENE_MESHES_OR_SKIP();
   const struct {
     const char* file;
     const char* mesh;
@@ -145,6 +150,7 @@ TEST_F(SceneJson, TableOneScenes) {
 }
 
 TEST_F(SceneJson, BunnyBoxTeapotSchedule) {
+  FF_SCENE_MESHES_OR_SKIP();
   ff::SceneDesc s = ff::loadScene(sceneFile("bunny_box_teapot.json"));
   EXPECT_EQ(s.fluidCount(), 12000);
   EXPECT_DOUBLE_EQ(s.duration, 9.0);
@@ -191,6 +197,7 @@ TEST_F(SceneJson, TargetForms) {
   EXPECT_FLOAT_EQ(t.rotation_deg.x(), 90.0f);
   EXPECT_FLOAT_EQ(t.voxel_size, 0.01f);
 
+  FF_MESH_OR_SKIP(bunny, "bunny.obj");
   j["target"] = "bunny.obj";
   s = parseScene(j.dump(), kSource, "");
   EXPECT_EQ(s.schedule[0].target.kind, ff::TargetKind::Mesh);
@@ -360,7 +367,7 @@ TEST_F(SceneJson, MalformedJsonNamesLine) {
 }
 
 TEST_F(SceneJson, LoadSceneNamesTheFile) {
-  const fs::path dir = fftest::scratchDir("scene_json");
+  const fftest::TempDir dir("scene_json");
   std::string path = (dir / "broken.json").string();
   json j = baseScene();
   j["fluid"][0]["dimz"] = 3;
@@ -386,7 +393,6 @@ TEST_F(SceneJson, LoadSceneNamesTheFile) {
   EXPECT_EQ(s.schedule[1].target.mesh, "tiny.obj");
   EXPECT_TRUE(fs::equivalent(s.schedule[1].target.resolved_path, dir / "tiny.obj"));
   EXPECT_EQ(s.name, "tiny_scene");  // the file's stem when the scene has no name
-  fs::remove_all(dir);
 }
 
 TEST_F(SceneJson, LoadSceneMissingFile) {

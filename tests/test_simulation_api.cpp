@@ -9,32 +9,18 @@
 #include "core/error.h"
 #include "cpu/backend_cpu.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 
 namespace {
 
 ff::SceneDesc smallScene() {
-  ff::SceneDesc s;
-  s.source = "test";
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = ff::Vec3(0.2f, 0.2f, 0.2f);
-  ff::FluidBlockDesc b;
-  b.origin = ff::Vec3(0.06f, 0.0f, 0.06f);
-  b.dims[0] = 12, b.dims[1] = 12, b.dims[2] = 12;
-  s.fluid.push_back(b);
-  return s;
-}
-
-ff::TargetSpec shape(ff::TargetKind k, int count) {
-  ff::TargetSpec t;
-  t.kind = k;
-  t.control_count = count;
-  return t;
+  return fftest::blockScene(ff::Vec3(0.2f, 0.2f, 0.2f), ff::Vec3(0.06f, 0.0f, 0.06f), 12, 12, 12);
 }
 
 TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {
   ff::SceneDesc s = smallScene();
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Sphere, 400)});
-  s.schedule.push_back({0.02, shape(ff::TargetKind::Box, 400)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 400)});
+  s.schedule.push_back({0.02, fftest::target(ff::TargetKind::Box, 400)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   ASSERT_NE(sim.target(), nullptr);
   EXPECT_EQ(sim.target()->label, "sphere");
@@ -49,7 +35,7 @@ TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   EXPECT_EQ(sim.target(), nullptr);
   for (int i = 0; i < 3; ++i) sim.step();
-  sim.setTarget(shape(ff::TargetKind::Torus, 500));
+  sim.setTarget(fftest::target(ff::TargetKind::Torus, 500));
   const ff::TargetShape* torus = sim.target();
   ASSERT_NE(torus, nullptr);
   ff::ControlSet c;
@@ -58,8 +44,8 @@ TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
   EXPECT_EQ(c.size(), torus->reference.size());
   EXPECT_NEAR(double(c.size()), 500.0, 15.0);
   for (int i = 0; i < 3; ++i) sim.step();
-  sim.setTarget(shape(ff::TargetKind::Capsule, 500));
-  sim.setTarget(shape(ff::TargetKind::Torus, 500));
+  sim.setTarget(fftest::target(ff::TargetKind::Capsule, 500));
+  sim.setTarget(fftest::target(ff::TargetKind::Torus, 500));
   // Back to the torus: made from the fluid of the current shape, whose volume
   // differs, so the cached voxelisation is rescaled, not voxelised again.
   EXPECT_EQ(sim.targetVoxelisations(), 2u);
@@ -74,7 +60,7 @@ TEST(SimulationApi, ControlParticlesFillTheRegionBoundingBox) {
   s.region.kind = ff::RegionDesc::Kind::Box;
   s.region.min = ff::Vec3(0.0f, 0.025f, 0.0f);
   s.region.max = ff::Vec3(0.2f, 0.06f, 0.2f);  // a middle layer of the block only
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Box, 300)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   ff::ControlSet c;
   ff::ControlFields f;
@@ -115,7 +101,7 @@ TEST(SimulationApi, PlacementFitsTheFormingShapeIntoTheContainer) {
   s.region.kind = ff::RegionDesc::Kind::Box;
   s.region.min = ff::Vec3(0.0f, 0.0f, 0.0f);
   s.region.max = ff::Vec3(0.2f, 0.04f, 0.2f);
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Box, 300)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   ff::ControlSet c;
   ff::ControlFields f;
@@ -132,7 +118,7 @@ TEST(SimulationApi, PlacementNeverLiftsTheParticlesOffTheirFluid) {
   s.region.kind = ff::RegionDesc::Kind::Box;
   s.region.min = ff::Vec3(0.0f, 0.0f, 0.0f);
   s.region.max = ff::Vec3(0.2f, 0.012f, 0.2f);
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 300)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Box, 300)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   ff::ControlSet c;
   ff::ControlFields f;
@@ -152,11 +138,11 @@ TEST(SimulationApi, ANewTargetIsMadeFromTheFluidOfTheCurrentShape) {
   blob.origin = ff::Vec3(0.005f, 0.0f, 0.005f);
   blob.dims[0] = blob.dims[1] = blob.dims[2] = 2;  // 8 particles in a corner
   s.fluid.push_back(blob);
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Box, 400)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Box, 400)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
   EXPECT_EQ(sim.controlledCount(), 12 * 12 * 12 + 8);
   for (int i = 0; i < 50; ++i) sim.step();
-  sim.setTarget(shape(ff::TargetKind::Sphere, 400));
+  sim.setTarget(fftest::target(ff::TargetKind::Sphere, 400));
   EXPECT_LE(sim.controlledCount(), 12 * 12 * 12);
   EXPECT_GT(sim.controlledCount(), 12 * 12 * 12 / 2);
 }
@@ -166,7 +152,7 @@ TEST(SimulationApi, EmptyRegionIsAClearError) {
   s.region.kind = ff::RegionDesc::Kind::Sphere;
   s.region.center = ff::Vec3(0.19f, 0.19f, 0.19f);
   s.region.radius = 0.005f;
-  s.schedule.push_back({0.0, shape(ff::TargetKind::Sphere, 300)});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 300)});
   try {
     ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());
     FAIL() << "expected an error";

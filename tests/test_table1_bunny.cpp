@@ -9,11 +9,12 @@
 
 #include "cpu/backend_cpu.h"
 #include "sim/simulation.h"
+#include "test_meshes.h"
 
 namespace {
 
 TEST(Table1, BunnyReachesIou075InFourSeconds) {
-  setenv("FLOWFORM_MESH_PATH", FF_SHARED_MESHES, 1);
+  FF_SCENE_MESHES_OR_SKIP();
   ff::SceneDesc scene = ff::loadScene(FF_SOURCE_DIR "/scenes/bunny.json");
   ASSERT_EQ(scene.preset, "paper");
   ASSERT_EQ(scene.fluidCount(), 12000);

@@ -338,26 +338,8 @@ TEST_F(MeshIoTest, TruncatedAndMutatedMeshesNeverCrash) {
 
 namespace {
 // Sets FLOWFORM_MESH_PATH for one test, restoring the old value afterwards.
-class MeshPathEnv {
- public:
-  explicit MeshPathEnv(const std::string& value) {
-    if (const char* old = std::getenv("FLOWFORM_MESH_PATH")) {
-      had_ = true;
-      old_ = old;
-    }
-    setenv("FLOWFORM_MESH_PATH", value.c_str(), 1);
-  }
-  ~MeshPathEnv() {
-    if (had_) {
-      setenv("FLOWFORM_MESH_PATH", old_.c_str(), 1);
-    } else {
-      unsetenv("FLOWFORM_MESH_PATH");
-    }
-  }
-
- private:
-  bool had_ = false;
-  std::string old_;
+struct MeshPathEnv : fftest::ScopedEnv {
+  explicit MeshPathEnv(const std::string& value) : fftest::ScopedEnv("FLOWFORM_MESH_PATH", value.c_str()) {}
 };
 }  // namespace
 
@@ -368,8 +350,8 @@ TEST(MeshPath, AbsolutePathIsTakenAsIs) {
 }
 
 TEST(MeshPath, MissingAbsolutePathIsAnError) {
-  MeshPathEnv env(FF_SHARED_MESHES);
-  const std::string missing = fs::absolute(FF_SHARED_MESHES "/no_such_mesh.obj").string();
+  MeshPathEnv env(fftest::meshSearchPath());
+  const std::string missing = "/nonexistent_ff_dir/no_such_mesh.obj";
   try {
     ff::resolveMeshPath(missing, "");
     ADD_FAILURE() << "no error";
@@ -380,7 +362,7 @@ TEST(MeshPath, MissingAbsolutePathIsAnError) {
 
 TEST_F(MeshIoTest, RelativePathIsFoundInTheSceneFolderFirst) {
   const std::string local = write("bunny.obj", cubeObj());
-  MeshPathEnv env(FF_SHARED_MESHES);
+  MeshPathEnv env(fftest::meshSearchPath());
   EXPECT_TRUE(fs::equivalent(ff::resolveMeshPath("bunny.obj", dir_.string()), local));
 }
 

@@ -18,10 +18,6 @@ using ff::viewer::Script;
 using ff::viewer::ScriptAction;
 using Kind = ff::viewer::ScriptAction::Kind;
 
-fs::path tempDir(const std::string& name) {
-  return fftest::scratchDir("script_" + name);
-}
-
 // The message of the ff::Error that parsing `text` as "demo.json" throws ("" if none).
 std::string errorOf(const std::string& text) {
   try {
@@ -33,7 +29,7 @@ std::string errorOf(const std::string& text) {
 }
 
 TEST(ViewerScript, ValidFileGivesTheActionsInOrder) {
-  const fs::path dir = tempDir("valid");
+  const fftest::TempDir dir("script_valid");
   std::ofstream(dir / "tet.obj")
       << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   std::ofstream(dir / "demo.json") << R"({"actions": [
@@ -207,7 +203,8 @@ TEST(ViewerScript, TheDemoScriptParses) {
 }
 
 TEST(ViewerScript, MissingFileIsAnErrorNamingIt) {
-  const fs::path missing = tempDir("missing") / "nope.json";
+  const fftest::TempDir dir("script_missing");
+  const fs::path missing = dir / "nope.json";
   try {
     ff::viewer::loadScript(missing.string());
     FAIL() << "no error for a missing script";

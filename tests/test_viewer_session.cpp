@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "temp_dir.h"
+#include "test_scenes.h"
 #include "viewer/target_catalog.h"
 #include "viewer/viewer_session.h"
 
@@ -20,16 +21,12 @@ namespace fs = std::filesystem;
 using ff::viewer::TargetChoice;
 using ff::viewer::ViewerSession;
 
-fs::path tempDir(const std::string& name) {
-  return fftest::scratchDir("session_" + name);
-}
-
 void touch(const fs::path& p) {
   std::ofstream(p) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 }
 
 TEST(ViewerTargets, ListsBuiltinsThenTheMeshesOfEveryFolder) {
-  const fs::path a = tempDir("meshes_a"), b = tempDir("meshes_b");
+  const fftest::TempDir a("session_meshes_a"), b("session_meshes_b");
   touch(a / "zebra.obj");
   touch(a / "bunny.obj");
   touch(a / "Horse.PLY");
@@ -66,7 +63,7 @@ TEST(ViewerTargets, TypedTargetTakesNamesPathsAndSceneSyntax) {
   const ff::TargetSpec box = ff::viewer::parseTypedTarget(R"({"shape": "box", "size": [2, 1, 1]})");
   EXPECT_EQ(box.kind, ff::TargetKind::Box);
   EXPECT_FLOAT_EQ(box.box_size.x(), 2.0f);
-  const fs::path d = tempDir("typed");
+  const fftest::TempDir d("session_typed");
   touch(d / "tet.obj");
   const ff::TargetSpec mesh = ff::viewer::parseTypedTarget((d / "tet.obj").string());
   EXPECT_EQ(mesh.kind, ff::TargetKind::Mesh);
@@ -90,31 +87,16 @@ TEST(ViewerTargets, TypedTargetTakesNamesPathsAndSceneSyntax) {
 
 // 216 particles in a small box; sphere at t = 0, box from t = 0.008 (step 2).
 ff::SceneDesc tinyScene() {
-  ff::SceneDesc s;
+  ff::SceneDesc s =
+      fftest::blockScene(ff::Vec3(0.1f, 0.1f, 0.1f), ff::Vec3(0.03f, 0.0f, 0.03f), 6, 6, 6, "tiny.json");
   s.name = "tiny";
-  s.source = "tiny.json";
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = ff::Vec3(0.1f, 0.1f, 0.1f);
-  ff::FluidBlockDesc b;
-  b.origin = ff::Vec3(0.03f, 0.0f, 0.03f);
-  b.dims[0] = b.dims[1] = b.dims[2] = 6;
-  s.fluid.push_back(b);
-  ff::TargetSpec sphere, box;
-  sphere.kind = ff::TargetKind::Sphere;
-  box.kind = ff::TargetKind::Box;
-  s.schedule.push_back({0.0, sphere});
-  s.schedule.push_back({0.008, box});
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere)});
+  s.schedule.push_back({0.008, fftest::target(ff::TargetKind::Box)});
   return s;
 }
 
 ff::viewer::BackendChoice cpu() {
   return ff::viewer::BackendChoice{"cpu", -1, 2};
-}
-
-ff::TargetSpec shape(ff::TargetKind k) {
-  ff::TargetSpec t;
-  t.kind = k;
-  return t;
 }
 
 TEST(ViewerSession, PlaysTheScheduleUntilTheUserPicksATarget) {
@@ -126,7 +108,7 @@ TEST(ViewerSession, PlaysTheScheduleUntilTheUserPicksATarget) {
 
   ViewerSession picked(tinyScene(), cpu());
   picked.step();
-  picked.chooseTarget(shape(ff::TargetKind::Torus));
+  picked.chooseTarget(fftest::target(ff::TargetKind::Torus));
   EXPECT_FALSE(picked.followsSchedule());
   for (int i = 0; i < 4; ++i) picked.step();
   EXPECT_EQ(picked.targetLabel(), "torus");  // the scheduled box did not replace it
@@ -151,7 +133,7 @@ TEST(ViewerSession, RejectedEditsChangeNothing) {
   EXPECT_THROW(s.setRegion(empty), ff::Error);
   EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::All);
 
-  const fs::path d = tempDir("badmesh");
+  const fftest::TempDir d("session_badmesh");
   std::ofstream(d / "broken.obj") << "this is not a mesh\n";
   ff::TargetSpec broken;
   broken.kind = ff::TargetKind::Mesh;
@@ -176,7 +158,7 @@ TEST(ViewerSession, ANewRegionRebuildsTheTargetFromAllTheFluidInIt) {
   left.min = ff::Vec3(0.0f, 0.0f, 0.0f);
   left.max = ff::Vec3(0.05f, 0.1f, 0.1f);
   s.setRegion(left);
-  s.chooseTarget(shape(ff::TargetKind::Sphere));
+  s.chooseTarget(fftest::target(ff::TargetKind::Sphere));
   EXPECT_EQ(s.sim().controlledCount(), 64);
   s.step();
   // All: both blocks. (Simulation::setRegion alone would keep to the fluid
@@ -197,7 +179,7 @@ TEST(ViewerSession, ResetKeepsEditsOrRestoresTheScene) {
   low.min = ff::Vec3(0.0f, 0.0f, 0.0f);
   low.max = ff::Vec3(0.1f, 0.02f, 0.1f);
   s.setRegion(low);
-  s.chooseTarget(shape(ff::TargetKind::Capsule));
+  s.chooseTarget(fftest::target(ff::TargetKind::Capsule));
 
   EXPECT_EQ(s.reset(true), "");
   EXPECT_DOUBLE_EQ(s.sim().time(), 0.0);
@@ -231,7 +213,7 @@ TEST(ViewerSession, ResetWarnsWhenTheKeptRegionHoldsNoFluidAtTimeZero) {
   left.min = ff::Vec3(0.0f, 0.0f, 0.0f);
   left.max = ff::Vec3(0.025f, 0.1f, 0.1f);
   s.setRegion(left);
-  s.chooseTarget(shape(ff::TargetKind::Torus));
+  s.chooseTarget(fftest::target(ff::TargetKind::Torus));
   EXPECT_EQ(s.targetLabel(), "torus");
   const std::string warning = s.reset(true);
   EXPECT_NE(warning.find("the target was not applied"), std::string::npos) << warning;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "cli_run.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -25,14 +26,9 @@ Result shell(const std::string& cmd) {
   return fftest::runShell(cmd);
 }
 
-fs::path tempDir(const std::string& name) {
-  return fftest::freshTempDir("view_" + name);
-}
-
 // 1000 particles in a 0.2 m box, a sphere target from the start.
 void writeSmallScene(const fs::path& file) {
-  std::ofstream(file) << R"({"name": "small", "container": {"min": [0, 0, 0], "max": [0.2, 0.2, 0.2]},
-    "fluid": [{"origin": [0.068, 0.0, 0.068], "dims": [10, 10, 10]}], "target": "sphere"})";
+  std::ofstream(file) << fftest::blockSceneJson("small", 0.2, 0.068, 0.068, 10, R"("target": "sphere")");
 }
 
 const std::string kExe = std::string("'") + FF_FLOWFORM_EXE + "'";
@@ -49,7 +45,7 @@ TEST(ViewerXvfb, ScriptChangesTheTargetSavesAScreenshotAndQuits) {
   if (shell("command -v xvfb-run && command -v xauth").code != 0)
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
-  const fs::path dir = tempDir("xvfb");
+  const fftest::TempDir dir("view_xvfb");
   writeSmallScene(dir / "small.json");
   const fs::path shot = dir / "shots" / "view.png";  // the folder does not exist yet
   std::ofstream(dir / "script.json") << R"({"actions": [
@@ -92,7 +88,7 @@ TEST(ViewerXvfb, AScriptActionThatFailsWhileRunningEndsTheViewerWithStatus1) {
   if (shell("command -v xvfb-run && command -v xauth").code != 0)
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
-  const fs::path dir = tempDir("xvfb_fail");
+  const fftest::TempDir dir("view_xvfb_fail");
   writeSmallScene(dir / "small.json");
   // The region is valid syntax but holds no fluid (above the resting block).
   std::ofstream(dir / "late.json") << R"({"actions": [
@@ -109,7 +105,7 @@ TEST(ViewerXvfb, AScriptActionThatFailsWhileRunningEndsTheViewerWithStatus1) {
 }
 
 TEST(ViewerCli, WithoutADisplayTheViewerSaysSoAndExits1) {
-  const fs::path dir = tempDir("nodisplay");
+  const fftest::TempDir dir("view_nodisplay");
   writeSmallScene(dir / "small.json");
   const Result r = shell("env -u DISPLAY -u WAYLAND_DISPLAY " + kExe + " view '" +
                          (dir / "small.json").string() + "' --backend cpu --threads 2");
@@ -120,7 +116,7 @@ TEST(ViewerCli, WithoutADisplayTheViewerSaysSoAndExits1) {
 }
 
 TEST(ViewerCli, ABadScriptIsRejectedBeforeAnyWindowOpens) {
-  const fs::path dir = tempDir("badscript");
+  const fftest::TempDir dir("view_badscript");
   writeSmallScene(dir / "small.json");
   std::ofstream(dir / "demo.json") << R"({"actions": [{"at": 0.5, "target": {"shape": "cube"}}]})";
   // No display either: the script is read first, so its error is the one reported.

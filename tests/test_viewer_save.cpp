@@ -80,7 +80,7 @@ TEST(ViewerSave, AScriptedSaveIsWhatRunAndViewStartFrom) {
   if (!haveXvfb())
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
-  const fs::path dir = fftest::freshTempDir("view_save");
+  const fftest::TempDir dir("view_save");
   std::ofstream(dir / "small.json") << kSmallScene;
   const fs::path saved = dir / "out" / "saved.json";  // the folder exists: made below
   fs::create_directories(saved.parent_path());

@@ -14,6 +14,7 @@ OpenClBackend::Impl::Impl(int device_index)
   pressure_wcsph = makeKernel(program, "pressure_wcsph", ctx);
   integrate = makeKernel(program, "integrate", ctx);
   control_scale = makeKernel(program, "control_scale", ctx);
+  control_scale_by_lane = makeKernel(program, "control_scale_by_lane", ctx, 256, 4 * sizeof(float));
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);

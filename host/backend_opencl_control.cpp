@@ -15,10 +15,21 @@ void OpenClBackend::computeControlScale() {
     if (nc_ == 0 || n_ == 0) return;
     // The fluid as the grid phase sorted it (cell h).
     const DeviceGrid& g = d.fluid_h;
-    launch(d.queue(), d.control_scale, nc_, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(), d.Y(),
-           d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
-           params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(), d.uy.get(), d.uz.get(),
-           d.bad.get(), cl_int(tag));
+    // The scalar variant (GPUs): 8 work-items per control particle, one per
+    // lane of the float8 sums, in work-groups of a power of two >= 8.
+    ClKernel& by_lane = d.control_scale_by_lane;
+    if (!lanes_ && by_lane.pow2_local >= 8) {
+      const size_t local = by_lane.pow2_local, groups = (8 * nc_ + local - 1) / local;
+      launchGroups(d.queue(), by_lane, groups, local, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(),
+                   d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(),
+                   g.geom.cell, params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(),
+                   d.uy.get(), d.uz.get(), d.bad.get(), cl_int(tag), cl::Local(local * 4 * sizeof(float)));
+    } else {
+      launch(d.queue(), d.control_scale, nc_, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(), d.Y(),
+             d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
+             params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(), d.uy.get(),
+             d.uz.get(), d.bad.get(), cl_int(tag));
+    }
     endPhase();
   });
 }

@@ -20,6 +20,7 @@ struct OpenClBackend::Impl {
   GridBuilder grids;
   ClKernel reorder, density, forces, pressure_wcsph, integrate;
   ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
+  ClKernel control_scale_by_lane;  // 8 work-items per control particle (GPUs)
   ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
       control_forces_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;      // 8 voxels per work-item
@@ -56,6 +57,13 @@ struct OpenClBackend::Impl {
   static size_t reduceGroups(size_t n, size_t local) {
     size_t g = (n + local - 1) / local;
     return g < 1 ? 1 : (g > 64 ? 64 : g);
+  }
+  // Work-groups for a count (an integer sum: any number of groups gives the
+  // same result): one work-item per element up to 16384 groups, so a large
+  // device is filled; the kernels stride beyond that.
+  static size_t countGroups(size_t n, size_t local) {
+    size_t g = (n + local - 1) / local;
+    return g < 1 ? 1 : (g > 16384 ? 16384 : g);
   }
 };
 

@@ -85,7 +85,7 @@ StepMetrics OpenClBackend::computeMetrics() {
     const size_t total = runs * size_t(g.ny + 2 * pad) * size_t(g.nz + 2 * pad);
     const ff_mat3 r = ff_quat_to_mat3(frame_.q);
     ClKernel& k = lanes_ ? d.m_iou_lanes : d.m_iou;
-    const size_t local = k.pow2_local, groups = Impl::reduceGroups(total, local);
+    const size_t local = k.pow2_local, groups = Impl::countGroups(total, local);
     d.partial.ensure(c, groups * 2 * sizeof(cl_uint));
     const cl_int4 tdims = i4(g.nx, g.ny, g.nz, pad);
     const cl_float4 torigin = f4(g.origin.x(), g.origin.y(), g.origin.z(), g.voxel);

@@ -15,6 +15,20 @@ float ff_total8(float8 v) {
   return ff_lane_sum8(v.s0, v.s1, v.s2, v.s3, v.s4, v.s5, v.s6, v.s7);
 }
 
+// s_i and u_bar from the lane-combined sums of W, W vx, W vy, W vz.
+void control_scale_store(uint i, float total, float tx, float ty, float tz, float volume,
+                         __global float* s_out, __global float* ux_out, __global float* uy_out,
+                         __global float* uz_out, __global int* bad, int tag) {
+  const float rho_hat = volume * total;
+  const float s = ff_control_scale(rho_hat);
+  // Where the kernel is only partly filled the missing part counts as still air.
+  const float norm = total > 0.0f ? volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
+  const float u[3] = {tx * norm, ty * norm, tz * norm};
+  s_out[i] = s;
+  ux_out[i] = u[0], uy_out[i] = u[1], uz_out[i] = u[2];
+  if (!isfinite(s) || !isfinite(u[0]) || !isfinite(u[1]) || !isfinite(u[2])) ff_report_nonfinite(bad, tag);
+}
+
 __kernel void control_scale(__global const float* cx, __global const float* cy, __global const float* cz,
                             uint nc, __global const float* fx, __global const float* fy,
                             __global const float* fz, __global const float* fvx, __global const float* fvy,
@@ -51,13 +65,59 @@ __kernel void control_scale(__global const float* cx, __global const float* cy, 
       }
     }
   }
-  const float total = ff_total8(sum);
-  const float rho_hat = volume * total;
-  const float s = ff_control_scale(rho_hat);
-  // Where the kernel is only partly filled the missing part counts as still air.
-  const float norm = total > 0.0f ? volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
-  const float u[3] = {ff_total8(ux) * norm, ff_total8(uy) * norm, ff_total8(uz) * norm};
-  s_out[i] = s;
-  ux_out[i] = u[0], uy_out[i] = u[1], uz_out[i] = u[2];
-  if (!isfinite(s) || !isfinite(u[0]) || !isfinite(u[1]) || !isfinite(u[2])) ff_report_nonfinite(bad, tag);
+  control_scale_store(i, ff_total8(sum), ff_total8(ux), ff_total8(uy), ff_total8(uz), volume, s_out, ux_out,
+                      uy_out, uz_out, bad, tag);
+}
+
+// The same sums with 8 work-items per control particle (for GPUs, where one
+// work-item per control particle leaves most of the device idle): work-item
+// `lane` takes the fluid positions k = lane mod 8 in ascending k, exactly the
+// lane `lane` of the float8 sums above, and the group combines the 8 lanes by
+// ff_lane_sum8 in local memory. Work-groups of a multiple of 8 work-items;
+// `tmp` holds 4 floats per work-item.
+__kernel void control_scale_by_lane(__global const float* cx, __global const float* cy,
+                                    __global const float* cz, uint nc, __global const float* fx,
+                                    __global const float* fy, __global const float* fz,
+                                    __global const float* fvx, __global const float* fvy,
+                                    __global const float* fvz, __global const uint* start, float4 geo,
+                                    int4 dims, float cell, float radius, float volume, __global float* s_out,
+                                    __global float* ux_out, __global float* uy_out, __global float* uz_out,
+                                    __global int* bad, int tag, __local float* tmp) {
+  const uint i = get_global_id(0) / 8u, lane = get_local_id(0) & 7u, lid = get_local_id(0);
+  float sum = 0.0f, ux = 0.0f, uy = 0.0f, uz = 0.0f;
+  if (i < nc) {
+    const float r2 = radius * radius, coef = ff_poly6_coef(radius);
+    const float px = cx[i], py = cy[i], pz = cz[i];
+    const float reach = ff_query_reach(radius, cell);
+    const int z0 = ff_cell_coord(pz - reach, geo.z, geo.w, dims.z),
+              z1 = ff_cell_coord(pz + reach, geo.z, geo.w, dims.z);
+    const int y0 = ff_cell_coord(py - reach, geo.y, geo.w, dims.y),
+              y1 = ff_cell_coord(py + reach, geo.y, geo.w, dims.y);
+    for (int z = z0; z <= z1; ++z) {
+      const float gz = ff_slab_gap(pz, pz, z, dims.z, geo.z, cell);
+      for (int y = y0; y <= y1; ++y) {
+        const float gy = ff_slab_gap(py, py, y, dims.y, geo.y, cell);
+        int x0, x1;
+        if (!ff_row_cells(px, px, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
+        const uint row = ff_cell_index(0, y, z, dims.x, dims.y);
+        const uint b = start[row + (uint)x0], e = start[row + (uint)x1 + 1u];
+        for (uint k = (b & ~7u) + lane; k < e; k += 8u) {
+          if (k < b) continue;
+          const float dx = px - fx[k], dy = py - fy[k], dz = pz - fz[k];
+          const float w = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
+          sum += w;
+          ux += w * fvx[k], uy += w * fvy[k], uz += w * fvz[k];
+        }
+      }
+    }
+  }
+  tmp[4u * lid] = sum, tmp[4u * lid + 1u] = ux, tmp[4u * lid + 2u] = uy, tmp[4u * lid + 3u] = uz;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lane != 0u || i >= nc) return;
+  float t[4];
+  for (int c = 0; c < 4; ++c) {
+    __local const float* v = tmp + 4u * lid + (uint)c;
+    t[c] = ff_lane_sum8(v[0], v[4], v[8], v[12], v[16], v[20], v[24], v[28]);
+  }
+  control_scale_store(i, t[0], t[1], t[2], t[3], volume, s_out, ux_out, uy_out, uz_out, bad, tag);
 }

@@ -167,6 +167,8 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant) {
   ocl.setKernelVariant(variant);
   g_tol = ff::roundsAsTheCpuBackend(ocl.deviceInfo()) ? 0.0 : kTol;
   g_worst = 0.0;
+  std::printf("tolerance: %s\n",
+              g_tol == 0.0 ? "0 (PoCL: bit for bit)" : "1e-5 of each quantity's error scale (GPU rounding)");
   std::printf("kernel variant: %s\n", ocl.usesLanes() ? "8 particles per work-item" : "1 per work-item");
   const ff::Params& params = p->sim->scene().params;
   const float dt = params.fluid.time_step;

@@ -1,6 +1,6 @@
 #!/bin/sh
 # mutation_check.sh - do the tests catch real bugs? Applies each one-line change
-# of issue 14's list to a scratch copy of the source tree, one at a time, builds
+# of issue 14's list to a scratch copy of the committed source tree (HEAD), one at a time, builds
 # the test program there and runs it; prints, for each change, the tests that
 # failed and how long each took. Every change must make at least one unit test
 # that runs in under a second fail (docs/TESTING.md lists which).
@@ -43,8 +43,9 @@ status=0
 while IFS='|' read -r name file expr; do
   [ -n "$name" ] || continue
   [ -z "$only" ] || [ "$only" = "$name" ] || continue
-  # A fresh copy of the tracked and untracked (not ignored) files.
-  (cd "$src" && git ls-files -co --exclude-standard -z | tar --null -T - -cf -) | (cd "$scratch/src" && tar -xf -)
+  # A fresh copy of the committed tree (HEAD), every file newer than the last
+  # build's objects (tar -m), so the previous change is undone in the build.
+  (cd "$src" && git archive HEAD) | (cd "$scratch/src" && tar -xmf -)
   before=$(md5sum "$scratch/src/$file")
   sed -i "$expr" "$scratch/src/$file"
   if [ "$(md5sum "$scratch/src/$file")" = "$before" ]; then

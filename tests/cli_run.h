@@ -32,6 +32,12 @@ inline CliResult runShell(const std::string& cmd) {
   return r;
 }
 
+// Exit codes of a refusal: 1 for an error the program reports, 2 for a usage
+// error (a bad option). A crash is neither: runShell gives -1 for a signal.
+inline bool isRefusal(int code) {
+  return code == 1 || code == 2;
+}
+
 // Runs `flowform ARGS` with FLOWFORM_MESH_PATH at the folders the tests search
 // for meshes (test_meshes.h); `env` holds further assignments for its
 // environment (e.g. "PATH=/nonexistent "), which may override FLOWFORM_MESH_PATH.

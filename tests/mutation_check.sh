@@ -5,7 +5,7 @@
 # failed and how long each took. Every change must make at least one unit test
 # that runs in under a second fail (docs/TESTING.md lists which).
 #
-#   sh tests/mutation_check.sh [--all] [--only NAME] [SCRATCH_DIR]
+#   sh tests/mutation_check.sh [--all] [--only NAME] [--filter GTEST_FILTER] [SCRATCH_DIR]
 #
 # Not part of ctest: it builds the program once per change. The scratch copy
 # lives in build/mutation (or the folder given) and is left there for the next
@@ -18,10 +18,12 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 scratch="$src/build/mutation"
 all=0
 only=
+filter_arg=
 while [ $# -gt 0 ]; do
   case "$1" in
     --all) all=1 ;;
     --only) only=$2; shift ;;
+    --filter) filter_arg=$2; shift ;;
     *) scratch=$1 ;;
   esac
   shift
@@ -29,6 +31,7 @@ done
 slow='Table1.*:OpenClRun.DefaultScene*:OpenClRun.TargetChanges*:ViewerXvfb.*:BenchCli.ControlSweep*:SeparableController.MovesAPlainParticleSystemIntoASphere:Checkpoint.*'
 filter='*'
 [ "$all" = 1 ] || filter="*-$slow"
+[ -z "$filter_arg" ] || filter=$filter_arg
 
 # name | file | sed expression (one line changed)
 mutations='stiffness_halved|kernels/common/ff_control.h|s|return (goal - x) \* (alpha / dt);|return (goal - x) * (0.5f * alpha / dt);|

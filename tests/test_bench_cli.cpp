@@ -174,13 +174,13 @@ TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
   };
   for (const Case& c : cases) {
     auto r = runFlowform(c.args, c.env);
-    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_EQ(r.code, 1) << c.args << "\n" << r.out;
     EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
   }
   // No meshes: the message names the mesh and the search path.
   auto r = runFlowform("bench --table1 --backend cpu --steps 1", "FLOWFORM_MESH_PATH=/nonexistent ");
-  EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.out.find("bunny.obj"), std::string::npos) << r.out;
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("target.mesh: mesh 'bunny.obj' not found"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FLOWFORM_MESH_PATH"), std::string::npos) << r.out;
 }
 

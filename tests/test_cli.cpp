@@ -47,8 +47,9 @@ TEST(Cli, DefaultSceneRunsAndReportsPhaseTimes) {
 
 TEST(Cli, MissingSceneFileIsAOneLineError) {
   Result r = run("run /nonexistent/scene.json --steps 1");
-  EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.out.find("/nonexistent/scene.json"), std::string::npos) << r.out;
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("flowform: error: /nonexistent/scene.json: cannot open scene file"), std::string::npos)
+      << r.out;
   EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
 }
 
@@ -57,7 +58,7 @@ TEST(Cli, BadSceneFieldNamesFileAndKey) {
   write(d / "bad.json",
         R"({"fluid": [{"origin": [0,0,0], "dims": [4,4,4]}], "params": {"fluid": {"viscosity": -1}}})");
   Result r = run("run '" + (d / "bad.json").string() + "' --steps 1");
-  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("bad.json"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("params.fluid.viscosity"), std::string::npos) << r.out;
 }
@@ -67,20 +68,23 @@ TEST(Cli, BrokenMeshNamesTheMeshFile) {
   write(d / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
   write(d / "s.json", R"({"fluid": [{"origin": [0.1,0,0.1], "dims": [6,6,6]}], "target": "broken.obj"})");
   Result r = run("run '" + (d / "s.json").string() + "' --steps 1");
-  EXPECT_NE(r.code, 0);
+  EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("broken.obj"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
 }
 
 TEST(Cli, UnwritableExportFolderIsAnError) {
   Result r = run("run --backend cpu --steps 1 --export /proc/flowform_cannot_write_here");
-  EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.out.find("/proc/flowform_cannot_write_here"), std::string::npos) << r.out;
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("/proc/flowform_cannot_write_here: cannot create export folder"), std::string::npos)
+      << r.out;
 }
 
 TEST(Cli, BadOptionIsRejected) {
   Result r = run("run --steps -5 --seconds 2");
-  EXPECT_NE(r.code, 0) << r.out;
+  EXPECT_EQ(r.code, 2) << r.out;  // a usage error
+  EXPECT_NE(r.out.find("--steps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Run with --help for more information."), std::string::npos) << r.out;
 }
 
 }  // namespace

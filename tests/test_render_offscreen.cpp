@@ -317,7 +317,7 @@ TEST(RenderCli, BadInputIsRefusedWithTheReason) {
         Case{"--frames 2 --every 0" + out, "--every"}, Case{"--frames 1 --start -1" + out, "--start"},
         Case{"--frames 1 --video /nonexistent_ff/v.mp4" + out, "/nonexistent_ff"}}) {
     const CliResult r = runFlowform("render " + scene + c.args, kCliEnv);
-    EXPECT_NE(r.code, 0) << c.args << "\n" << r.out;
+    EXPECT_TRUE(fftest::isRefusal(r.code)) << c.args << ": exit code " << r.code << "\n" << r.out;
     EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << "\n" << r.out;
     EXPECT_EQ(r.out.find("internal error"), std::string::npos) << c.args << "\n" << r.out;
   }
@@ -333,7 +333,7 @@ TEST(RenderCli, VideoWithoutFfmpegStopsBeforeAnyWork) {
       runFlowform("render '" + tinyScene(d).string() + "' --frames 1 --width 64 --height 64 --out '" +
                       out.string() + "' --video '" + (d / "v.mp4").string() + "'",
                   std::string(kCliEnv) + " PATH='" + empty_bin.string() + "'");
-  EXPECT_NE(r.code, 0) << r.out;
+  EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("--video needs ffmpeg"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("apt-get install ffmpeg"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out)) << "the check comes before any work, so not even the folder is made";

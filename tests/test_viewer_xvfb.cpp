@@ -130,7 +130,7 @@ TEST(ViewerCli, ABadScriptIsRejectedBeforeAnyWindowOpens) {
   EXPECT_NE(r.out.find("missing.json: cannot open script file"), std::string::npos) << r.out;
 
   r = shell(kExe + " view '" + (dir / "small.json").string() + "' --width 10");
-  EXPECT_NE(r.code, 0) << r.out;
+  EXPECT_EQ(r.code, 2) << r.out;  // a usage error
   EXPECT_NE(r.out.find("--width"), std::string::npos) << r.out;
 }
 

@@ -99,7 +99,7 @@ class ModuleTest(unittest.TestCase):
         self.assertIsInstance(ctx.exception, RuntimeError)
         # The CLI says the same.
         cli = subprocess.run([EXE, "run", bad, "--steps", "1"], capture_output=True, text=True)
-        self.assertNotEqual(cli.returncode, 0)
+        self.assertEqual(cli.returncode, 1, cli.stderr)  # an error, not a crash
         self.assertIn(str(ctx.exception), cli.stderr)
         with self.assertRaises(flowform.Error) as ctx:
             flowform.Simulation(dict(SCENE, colour="blue"))

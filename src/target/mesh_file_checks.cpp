@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -83,6 +84,12 @@ struct PlyHeader {
   size_t data_offset = 0;
 };
 
+// assimp takes "ply" in any letter case ("pLy") as a PLY file's first bytes.
+bool isPlyMagic(const std::string& s) {
+  return s.size() >= 3 && std::tolower((unsigned char)s[0]) == 'p' &&
+         std::tolower((unsigned char)s[1]) == 'l' && std::tolower((unsigned char)s[2]) == 'y';
+}
+
 // Strict PLY header grammar.
 PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
   auto garbled = [&path](size_t line_no, const std::string& why) {
@@ -99,7 +106,7 @@ PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
     pos = eol + 1;
     const std::vector<std::string> w = words(line);
     if (line_no == 1) {
-      if (w.size() != 1 || (w[0] != "ply" && w[0] != "PLY")) garbled(line_no, "the first line must be 'ply'");
+      if (w.size() != 1 || !isPlyMagic(w[0])) garbled(line_no, "the first line must be 'ply'");
     } else if (line_no == 2) {
       if (w.size() != 3 || w[0] != "format") garbled(line_no, "expected 'format TYPE VERSION'");
       if (w[1] == "ascii") {
@@ -259,13 +266,26 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
   std::getline(in, rest, '\0');
   in.clear();
   in.str(glued + " " + rest);
-  long long nv = 0, nf = 0;
-  if (!(in >> nv >> nf)) return;  // not a layout this check knows: leave it to assimp
-  if (nv < 0 || nf < 0) fail(path, "garbled OFF header: negative vertex or face count");
+  // The counts as assimp reads them: the leading digits of each word (it
+  // reads "1`*" as 1). A count too large for 64 bits is too large for the file.
+  std::string words[2];
+  if (!(in >> words[0] >> words[1])) return;  // not a layout this check knows: leave it to assimp
+  uintmax_t count[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    if (words[i][0] == '-') fail(path, "garbled OFF header: negative vertex or face count");
+    const size_t sign = words[i][0] == '+' ? 1 : 0;
+    for (size_t k = sign; k < words[i].size() && std::isdigit((unsigned char)words[i][k]); ++k) {
+      const uintmax_t digit = uintmax_t(words[i][k] - '0');
+      count[i] = count[i] > (UINTMAX_MAX - digit) / 10 ? UINTMAX_MAX : count[i] * 10 + digit;
+    }
+  }
   // Every vertex and face takes at least one byte.
-  if (uintmax_t(nv) > file_size || uintmax_t(nf) > file_size || uintmax_t(nv) + uintmax_t(nf) > file_size) {
-    fail(path, "garbled or truncated OFF file: its header declares " + std::to_string(nv) + " vertices and " +
-                   std::to_string(nf) + " faces but the file holds only " + std::to_string(file_size) +
+  if (count[0] > file_size || count[1] > file_size || count[0] + count[1] > file_size) {
+    auto shown = [](uintmax_t n) {
+      return n == UINTMAX_MAX ? std::string("more than 2^64") : std::to_string(n);
+    };
+    fail(path, "garbled or truncated OFF file: its header declares " + shown(count[0]) + " vertices and " +
+                   shown(count[1]) + " faces but the file holds only " + std::to_string(file_size) +
                    " bytes");
   }
 }
@@ -274,7 +294,7 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
 
 void checkMeshFileStructure(const std::string& path, uintmax_t file_size) {
   const std::string head = readBytes(path, kHeadBytes);
-  if (head.compare(0, 3, "ply") == 0 || head.compare(0, 3, "PLY") == 0) {
+  if (isPlyMagic(head.substr(0, 3))) {
     checkPly(path, head, file_size);
   } else {
     checkOff(path, head, file_size);

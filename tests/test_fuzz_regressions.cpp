@@ -107,6 +107,35 @@ TEST(FuzzRegressions, OffCountsPast64BitsAreRefused) {
   }
 }
 
+TEST(FuzzRegressions, OffCommentsBetweenTheCountsAreSkippedAsAssimpSkipsThem) {
+  // "OFF\n#mo cment\n4 333333333333334 0": the check read the comment's words
+  // as the counts; assimp skips comment lines and allocated 14.7 GB.
+  fftest::TempDir tmp("fuzz_off_comment");
+  const std::string what =
+      replay("mesh_off", kFuzzDir / "regressions" / "mesh_off" / "face_count_after_comment.off", tmp);
+  EXPECT_NE(what.find("declares 4 vertices and 333333333333334 faces"), std::string::npos) << what;
+  // The same with the comment glued to the keyword, and between the counts.
+  for (const char* text : {"OFF#x\n4 99999999999 0\n", "OFF\n4 # four\n99999999999 0\n"}) {
+    const fs::path f = tmp.write("c.off", text);
+    try {
+      ff::loadMesh(f.string());
+      ADD_FAILURE() << text << " accepted";
+    } catch (const ff::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("declares 4 vertices and 99999999999 faces"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(FuzzRegressions, PlyMagicAfterABlankLineIsChecked) {
+  // assimp skips a line end before "ply"; the checks looked for "ply" at the
+  // first byte only, so this garbled header reached assimp, which looped.
+  fftest::TempDir tmp("fuzz_ply_blank");
+  const std::string what =
+      replay("mesh_ply", kFuzzDir / "regressions" / "mesh_ply" / "blank_line_before_magic_hang.ply", tmp);
+  EXPECT_NE(what.find("garbled PLY header (line 1)"), std::string::npos) << what;
+}
+
 TEST(FuzzRegressions, PlyMagicInAnyLetterCaseIsChecked) {
   // assimp reads "pLy" as PLY; the header checks only knew "ply" and "PLY",
   // so a garbled header behind "pLy" reached assimp, which looped forever.

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -251,25 +252,45 @@ void checkPly(const std::string& path, const std::string& head, uintmax_t file_s
 
 // ---- OFF -------------------------------------------------------------------------
 
+// The words of an OFF header as assimp's NextToken walks them: separated by
+// white space, and a word that starts with '#' skips the rest of its line
+// (a comment, anywhere between two values). Returns [start, end) positions.
+std::vector<std::pair<size_t, size_t>> offWords(const std::string& text, size_t max_words) {
+  std::vector<std::pair<size_t, size_t>> out;
+  size_t i = 0;
+  const size_t n = text.size();
+  while (out.size() < max_words) {
+    while (i < n && std::isspace((unsigned char)text[i])) ++i;
+    if (i >= n) break;
+    if (text[i] == '#') {
+      while (i < n && text[i] != '\n') ++i;
+      continue;
+    }
+    const size_t start = i;
+    while (i < n && !std::isspace((unsigned char)text[i])) ++i;
+    out.push_back({start, i});
+  }
+  return out;
+}
+
 void checkOff(const std::string& path, const std::string& head, uintmax_t file_size) {
-  std::istringstream in(head);
-  std::string token, rest;
-  while (in >> token && token[0] == '#') std::getline(in, rest);  // comments
+  const auto first = offWords(head, 1);
+  if (first.empty()) return;
+  const std::string token = head.substr(first[0].first, first[0].second - first[0].first);
   const size_t keyword = token.find("OFF");
   if (keyword == std::string::npos) return;
-  // assimp also reads counts glued to the keyword ("OFF8 6 0").
-  std::string glued = token.substr(keyword + 3);
-  if (token == "nOFF") {  // then the dimension
-    in >> token;
-    glued.clear();
-  }
-  std::getline(in, rest, '\0');
-  in.clear();
-  in.str(glued + " " + rest);
+  // The counts follow the keyword, even glued to it ("OFF8 6 0"); after
+  // "nOFF" comes the dimension first.
+  const std::string rest = head.substr(first[0].first + keyword + 3);
+  const size_t skip = token == "nOFF" ? 1 : 0;
+  const auto next = offWords(rest, skip + 2);
+  if (next.size() < skip + 2) return;  // not a layout this check knows: leave it to assimp
+  std::string words[2];
+  for (int i = 0; i < 2; ++i)
+    words[i] = rest.substr(next[skip + size_t(i)].first,
+                           next[skip + size_t(i)].second - next[skip + size_t(i)].first);
   // The counts as assimp reads them: the leading digits of each word (it
   // reads "1`*" as 1). A count too large for 64 bits is too large for the file.
-  std::string words[2];
-  if (!(in >> words[0] >> words[1])) return;  // not a layout this check knows: leave it to assimp
   uintmax_t count[2] = {0, 0};
   for (int i = 0; i < 2; ++i) {
     if (words[i][0] == '-') fail(path, "garbled OFF header: negative vertex or face count");
@@ -294,7 +315,9 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
 
 void checkMeshFileStructure(const std::string& path, uintmax_t file_size) {
   const std::string head = readBytes(path, kHeadBytes);
-  if (isPlyMagic(head.substr(0, 3))) {
+  // assimp skips line ends before the magic; the PLY checks then refuse them.
+  const size_t text = std::min(head.find_first_not_of(" \t\r\n"), head.size());
+  if (isPlyMagic(head.substr(text, 3))) {
     checkPly(path, head, file_size);
   } else {
     checkOff(path, head, file_size);

@@ -13,6 +13,7 @@
 #include "app/bench_cases.h"
 #include "app/bench_report.h"
 #include "app/bench_runner.h"
+#include "app/bench_soak.h"
 #include "app/commands.h"
 #include "app/kernels_option.h"
 #include "core/error.h"
@@ -37,6 +38,8 @@ struct BenchOptions {
   std::string csv;
   bool plot = false;
   int metrics_every = 1;
+  bool soak = false;
+  SoakOptions soak_options;
 };
 
 // The backends to time: the OpenMP one and every OpenCL device (or the ones asked for).
@@ -160,8 +163,23 @@ long controlSize(const BenchCase& c) {
   return c.control;
 }
 
+// --soak: the target-change soak on every backend; exit 1 if a check failed.
+int runSoaks(const BenchOptions& o) {
+  std::vector<SoakResult> results;
+  for (const BenchBackend& b : chooseBackends(o)) {
+    results.push_back(runSoak(o.soak_options, b));
+    if (!results.back().ok())
+      std::fprintf(stderr, "bench soak: FAILED: %s\n", results.back().failure.c_str());
+  }
+  printSoak(stdout, results);
+  for (const SoakResult& r : results)
+    if (!r.ok()) return 1;
+  return 0;
+}
+
 int runBench(BenchOptions o) {
   validate(o);
+  if (o.soak) return runSoaks(o);
   if (!o.table1 && !o.fluid_sweep && !o.control_sweep) o.table1 = o.fluid_sweep = o.control_sweep = true;
   if (o.threads > 0) omp_set_num_threads(o.threads);
   const std::vector<BenchBackend> backends = chooseBackends(o);
@@ -216,6 +234,13 @@ std::function<int()> addBenchCommand(CLI::App& app) {
   cmd->add_option("--metrics-every", o->metrics_every,
                   "Metrics every K steps (default 1); the host-sync count separates steps with and without")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--soak", o->soak,
+                "Soak instead of timing: --soak-changes target changes, each with a region change, on every "
+                "backend; checks for NaN and particles outside the box and that memory stays flat "
+                "(peak RSS reported); exit 1 if a check fails");
+  cmd->add_option("--soak-changes", o->soak_options.changes, "Target changes of the soak (default 300)");
+  cmd->add_option("--soak-steps", o->soak_options.steps_between,
+                  "Steps after each change of the soak (default 4)");
   return [o] { return runBench(*o); };
 }
 

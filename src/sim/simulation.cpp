@@ -258,8 +258,11 @@ void Simulation::setTarget(const TargetSpec& spec) {
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
   checkControlCount(spec, count, volume, defaultVoxelSize(fp));
-  target_ = &cache_.get(spec, volume, defaultVoxelSize(fp));
-  checkClusterMemory(scene_.params.shape, target_->reference.size(), scene_.source);
+  // The current shape stays in the cache (the backend still uses it) until
+  // the new one is accepted.
+  const TargetShape& shape = cache_.get(spec, volume, defaultVoxelSize(fp), target_);
+  checkClusterMemory(scene_.params.shape, shape.reference.size(), scene_.source);
+  target_ = &shape;
   target_volume_ = volume;
   target_spec_ = spec;
   has_target_ = true;

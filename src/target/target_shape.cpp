@@ -309,7 +309,7 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
 }
 
 const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_volume,
-                                    float default_voxel_size) {
+                                    float default_voxel_size, const TargetShape* keep) {
   const double volume = volumeToUse(spec, fluid_rest_volume);
   std::string suffix;
   if (spec.control_count <= 0 && spec.voxel_size <= 0.0f) {
@@ -320,8 +320,8 @@ const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_vo
   }
   const std::string key = spec.cacheKey(float(volume)) + suffix;
   const std::string base_key = spec.cacheKey(0.0f) + suffix;
-  for (const Entry& e : entries_)
-    if (e.key == key) return *e.shape;
+  for (Entry& e : entries_)
+    if (e.key == key) return use(e, keep);
   if (spec.voxel_size <= 0.0f) {
     for (const Entry& e : entries_) {
       if (e.base_key != base_key) continue;
@@ -333,13 +333,43 @@ const TargetShape& TargetCache::get(const TargetSpec& spec, double fluid_rest_vo
       for (Vec3& r : shape->reference) r *= float(f);
       shape->shape_volume *= f * f * f;
       entries_.push_back({key, base_key, volume, std::move(shape)});
-      return *entries_.back().shape;
+      return use(entries_.back(), keep);
     }
   }
   auto shape = std::make_unique<TargetShape>(buildTarget(spec, fluid_rest_volume, default_voxel_size));
   ++voxelisations_;
   entries_.push_back({key, base_key, volume, std::move(shape)});
-  return *entries_.back().shape;
+  return use(entries_.back(), keep);
+}
+
+namespace {
+size_t shapeBytes(const TargetShape& s) {
+  return sizeof(TargetShape) + s.grid.inside.capacity() + s.reference.capacity() * sizeof(Vec3);
+}
+}  // namespace
+
+size_t TargetCache::bytes() const {
+  size_t n = 0;
+  for (const Entry& e : entries_) n += shapeBytes(*e.shape);
+  return n;
+}
+
+const TargetShape& TargetCache::use(Entry& chosen, const TargetShape* keep) {
+  chosen.last_use = ++clock_;
+  const TargetShape* result = chosen.shape.get();
+  // Drop the least recently used shapes while over a bound (the shape handed
+  // out now and `keep` stay even then).
+  for (;;) {
+    if (entries_.size() <= kMaxEntries && bytes() <= kMaxBytes) break;
+    auto oldest = entries_.end();
+    for (auto it = entries_.begin(); it != entries_.end(); ++it) {
+      if (it->shape.get() == result || it->shape.get() == keep) continue;
+      if (oldest == entries_.end() || it->last_use < oldest->last_use) oldest = it;
+    }
+    if (oldest == entries_.end()) break;
+    entries_.erase(oldest);
+  }
+  return *result;
 }
 
 std::string resolveMeshPath(const std::string& name, const std::string& scene_dir) {

@@ -77,8 +77,12 @@ struct TargetShape {
 // estimated and refused over the limits of core/resource_limits.h.
 TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
 
-// Keeps every voxelisation made during a run, so that switching back to a
-// target costs nothing.
+// Keeps the voxelisations made during a run, so that switching back to a
+// target costs nothing. It is bounded (a long interactive session or a soak
+// makes hundreds of targets, each region a new volume): past kMaxEntries
+// shapes or kMaxBytes bytes, the least recently used shapes are dropped,
+// never the one just returned nor `keep` (the shape the caller still uses).
+// A reference from get() stays valid until a later get() that does not keep it.
 //
 // A voxelisation scales exactly with the volume: every length by
 // (V'/V)^(1/3), the same voxels. So when the same shape is asked for at
@@ -88,8 +92,13 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
 // since rescaling would change its voxel size.
 class TargetCache {
  public:
-  const TargetShape& get(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size);
+  static constexpr size_t kMaxEntries = 32;
+  static constexpr size_t kMaxBytes = size_t(256) << 20;
+
+  const TargetShape& get(const TargetSpec& spec, double fluid_rest_volume, float default_voxel_size,
+                         const TargetShape* keep = nullptr);
   size_t size() const { return entries_.size(); }
+  size_t bytes() const;
   // How many voxelisations were actually computed (rescaled copies excluded).
   size_t voxelisations() const { return voxelisations_; }
 
@@ -99,9 +108,12 @@ class TargetCache {
     std::string base_key;  // spec only: the same shape at any volume
     double volume = 0.0;
     std::unique_ptr<TargetShape> shape;  // references handed out stay valid as entries are added
+    uint64_t last_use = 0;
   };
+  const TargetShape& use(Entry& e, const TargetShape* keep);
   std::vector<Entry> entries_;
   size_t voxelisations_ = 0;
+  uint64_t clock_ = 0;
 };
 
 // The most voxels one voxel grid may have, in all and along one axis

@@ -17,6 +17,7 @@ OpenClBackend::Impl::Impl(int device_index)
   control_scale_by_lane = makeKernel(program, "control_scale_by_lane", ctx, 256, 4 * sizeof(float));
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
+  control_recapture_centre = makeKernel(program, "control_recapture_centre", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
   forces_lanes = makeKernel(program, "forces_lanes", ctx, kLaneGroupCap);
   pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
@@ -29,6 +30,7 @@ OpenClBackend::Impl::Impl(int device_index)
   m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));
   m_iou = makeKernel(program, "metrics_iou", ctx, 256, 2 * sizeof(cl_uint));
   m_iou_lanes = makeKernel(program, "metrics_iou_lanes", ctx, 256, 2 * sizeof(cl_uint));
+  m_shares = makeKernel(program, "metrics_shares", ctx, 256, 4 * sizeof(cl_uint));
   bad.ensure(ctx.context(), sizeof(cl_int));
   fillBuffer(ctx.queue(), bad, cl_int(0), 1);
 }
@@ -89,6 +91,8 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
       for (DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k]})
         fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
     for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
+    d.reach.ensure(c, padded8(n_));
+    fillBuffer(q, d.reach, cl_uchar(0), padded8(n_));
     setParams(params);
     grid_state_ = GridState::Stale;
     finishQueue(q);
@@ -136,8 +140,18 @@ void OpenClBackend::uploadControl() {
   finishQueue(q);  // `identity` must outlive the non-blocking writes
 }
 
+void OpenClBackend::setControlledFluid(std::vector<uint8_t> by_id) {
+  masked_ = !by_id.empty();
+  if (!masked_) return;
+  clGuard("uploading the controlled fluid", [&] {
+    upload(d_->queue(), d_->ctx.context(), d_->controlled, by_id);
+    finishQueue(d_->queue());
+  });
+}
+
 void OpenClBackend::setMetricsTarget(const TargetShape* target) {
   target_ = target;
+  target_voxels_ = target ? targetVoxelCount(*target) : 0;
   if (!target) return;
   clGuard("uploading the metrics target", [&] {
     upload(d_->queue(), d_->ctx.context(), d_->inside, target->grid.inside);
@@ -256,7 +270,7 @@ size_t OpenClBackend::memoryBytes() const {
         &d.uy,      &d.uz,       &d.gx,     &d.gy,      &d.gz,       &d.sx,         &d.sy,      &d.sz,
         &d.ss,      &d.svx,      &d.svy,    &d.svz,     &d.cl_start, &d.cl_members, &d.rest_cx, &d.rest_cy,
         &d.rest_cz, &d.of_start, &d.of,     &d.q,       &d.com_x,    &d.com_y,      &d.com_z,   &d.ccv_x,
-        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.partial, &d.bad})
+        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.rcentre, &d.reach,    &d.controlled, &d.partial, &d.bad})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
 }

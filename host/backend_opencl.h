@@ -17,6 +17,7 @@
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"
 #include "host/device_grid.h"
+#include "metrics/fluid_shares.h"
 #include "metrics/iou.h"
 #include "sim/backend.h"
 #include "sim/nonfinite_log.h"
@@ -36,6 +37,7 @@ class OpenClBackend : public Backend {
   void setParams(const Params& params) override;
   void setControl(ControlSet set) override;
   void setMetricsTarget(const TargetShape* target) override;
+  void setControlledFluid(std::vector<uint8_t> by_id) override;
 
   void buildGrid() override;
   void computeDensity() override;
@@ -93,6 +95,8 @@ class OpenClBackend : public Backend {
   size_t nc_ = 0, nclusters_ = 0;
   double clock_ = 0.0;  // shape-matching time not yet consumed
   const TargetShape* target_ = nullptr;
+  long target_voxels_ = 0;
+  bool masked_ = false;  // setControlledFluid gave a mask (else all the fluid is controlled)
   RigidFrame frame_;
   // The fluid h-grid: Stale after the positions change; Index when built over
   // the current positions without reordering (by the metrics, reused by the

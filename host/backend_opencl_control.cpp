@@ -52,12 +52,19 @@ void OpenClBackend::applyControlForces(float dt) {
     const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
     const float* g = params_.fluid.gravity;
     const DeviceGrid& cg = d.control_r;
+    // Recapture (as Controller::addForces): the centre of the unfilled control particles, then the forces.
+    d.rcentre.ensure(d.ctx.context(), 4 * sizeof(float));
+    launch(d.queue(), d.control_recapture_centre, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
+           cl_uint(nc_), cl_int(cp.recapture > 0.0f ? 1 : 0), d.rcentre.get());
+    const cl::Buffer& mask = masked_ ? d.controlled.get() : d.reach.get();  // unread without a mask
+    const cl_float4 rparams = f4(cp.recaptureSpeed(g), cp.recaptureRate(g), r, 0.0f);
     ClKernel& k = lanes_ ? d.control_forces_lanes : d.control_forces;
     launch(d.queue(), k, lanes_ ? padded8(n_) / 8 : n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
            d.rho.get(), cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(),
            d.svz.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
            cp.attraction, cp.velocity, cp.gravity_compensation, per_density, unit_scale,
-           f4(g[0], g[1], g[2], 0.0f), dt, d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+           f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.id[d.cur].get(), mask, cl_int(masked_ ? 1 : 0),
+           rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(), d.bad.get(), cl_int(tag));
     endPhase();
   });
 }

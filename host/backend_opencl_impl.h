@@ -19,12 +19,12 @@ struct OpenClBackend::Impl {
   cl::Program program;
   GridBuilder grids;
   ClKernel reorder, density, forces, pressure_wcsph, integrate;
-  ClKernel control_scale, control_gather, control_forces, sm_frames, sm_particles;
+  ClKernel control_scale, control_gather, control_forces, control_recapture_centre, sm_frames, sm_particles;
   ClKernel control_scale_by_lane;  // 8 work-items per control particle (GPUs)
   ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
       control_forces_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;      // 8 voxels per work-item
-  ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou;
+  ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou, m_shares;
 
   // Fluid, double-buffered for the reorder: [cur] holds the current state.
   DeviceBuffer x[2], y[2], z[2], vx[2], vy[2], vz[2], id[2];
@@ -36,11 +36,14 @@ struct OpenClBackend::Impl {
   // Control particles (fixed order) and their per-step fields.
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
+  DeviceBuffer rcentre;                        // the recapture's centre (xyz) and fade (w)
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;
 
-  DeviceBuffer inside;  // the metrics target's voxels (uchar)
+  DeviceBuffer inside;      // the metrics target's voxels (uchar)
+  DeviceBuffer reach;       // per fluid particle: a control particle within reach in control_forces (uchar)
+  DeviceBuffer controlled;  // per particle id: controlled fluid (uchar; unused when all the fluid is)
   DeviceBuffer partial;
   std::vector<float> partial_host;
   std::vector<cl_uint> partial_uint;

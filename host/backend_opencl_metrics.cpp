@@ -105,10 +105,27 @@ StepMetrics OpenClBackend::computeMetrics() {
                    d.partial.get(), tmp);
     d.partial_uint.resize(groups * 2);
     blockingRead(q, d.partial.get(), groups * 2 * sizeof(cl_uint), d.partial_uint.data());
-    long inter = 0, uni = 0;
+    IouCounts counts;
     for (size_t k = 0; k < groups; ++k)
-      inter += long(d.partial_uint[2 * k]), uni += long(d.partial_uint[2 * k + 1]);
-    m.iou = uni > 0 ? double(inter) / double(uni) : 0.0;
+      counts.inter += long(d.partial_uint[2 * k]), counts.uni += long(d.partial_uint[2 * k + 1]);
+
+    // Where the fluid lies: (controlled, captured, stray, far) per group.
+    ClKernel& ks = d.m_shares;
+    const size_t sgroups = Impl::reduceGroups(n_, ks.pow2_local);
+    d.partial.ensure(c, sgroups * 4 * sizeof(cl_uint));
+    // Without a mask the kernel never reads `controlled`: any buffer will do.
+    const cl::Buffer& mask = masked_ ? d.controlled.get() : d.reach.get();
+    launchGroups(q, ks, sgroups, ks.pow2_local, d.X(), d.Y(), d.Z(), d.id[d.cur].get(), cl_uint(n_), mask,
+                 cl_int(masked_ ? 1 : 0), d.reach.get(), d.inside.get(), tdims, torigin, r0, r1, r2, fc, rc,
+                 d.partial.get(), cl::Local(ks.pow2_local * 4 * sizeof(cl_uint)));
+    d.partial_uint.resize(sgroups * 4);
+    blockingRead(q, d.partial.get(), sgroups * 4 * sizeof(cl_uint), d.partial_uint.data());
+    FluidShares sh;
+    for (size_t k = 0; k < sgroups; ++k) {
+      sh.controlled += long(d.partial_uint[4 * k]), sh.captured += long(d.partial_uint[4 * k + 1]);
+      sh.stray += long(d.partial_uint[4 * k + 2]), sh.far += long(d.partial_uint[4 * k + 3]);
+    }
+    setShapeMetrics(m, counts, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
     return m;
   });
 }

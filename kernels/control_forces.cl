@@ -26,14 +26,53 @@ __kernel void control_gather(__global const uint* order, uint nc, __global const
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
 }
 
+// The recapture's centre (xyz) and fade (w) from the control particles'
+// positions and s, in their fixed order: one work-item, as
+// Controller::addForces sums them. enabled: params.control.recapture > 0.
+__kernel void control_recapture_centre(__global const float* x, __global const float* y,
+                                       __global const float* z, __global const float* s, uint nc, int enabled,
+                                       __global float* out) {
+  if (get_global_id(0) != 0) return;
+  float ucx = 0.0f, ucy = 0.0f, ucz = 0.0f, cw = 0.0f, uw = 0.0f;
+  for (uint i = 0; i < nc; ++i) {
+    const float w = ff_recapture_centre_weight(s[i]);
+    ucx += w * x[i], ucy += w * y[i], ucz += w * z[i], cw += w;
+    uw += ff_recapture_weight(s[i]);
+  }
+  out[0] = ucx / cw, out[1] = ucy / cw, out[2] = ucz / cw;
+  out[3] = enabled ? ff_recapture_fade(uw, (float)nc) : 0.0f;
+}
+
 // The accelerations of fluid particle e from its sums over the control
-// particles: attraction fa, weight wsum and weighted velocity vs*.
+// particles: attraction fa, weight wsum and weighted velocity vs*, after the
+// recapture's; reached[e]: whether a control particle was within the radius
+// (wsum > 0). The recapture reads its centre and fade (rcentre, from
+// control_recapture_centre), the controlled fluid by identity (all of it when
+// use_mask is 0) and rparams = (speed, relaxation rate, control radius, 0).
 inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, float vsy, float vsz,
+                                  __global const float* x, __global const float* y, __global const float* z,
                                   __global const float* vx, __global const float* vy,
                                   __global const float* vz, __global const float* rho, float cp_volume,
                                   float full_at, float wa, float wv, float gc, int per_density,
-                                  float unit_scale, float4 gravity, float dt, __global float* ax,
-                                  __global float* ay, __global float* az, __global int* bad, int tag) {
+                                  float unit_scale, float4 gravity, float dt, __global const float* rcentre,
+                                  __global const uint* id, __global const uchar* controlled, int use_mask,
+                                  float4 rparams, __global float* ax, __global float* ay, __global float* az,
+                                  __global uchar* reached, __global int* bad, int tag) {
+  reached[e] = wsum > 0.0f ? 1 : 0;
+  float bx = ax[e], by = ay[e], bz = az[e];
+  const float fade = rcentre[3];
+  if (fade > 0.0f && (!use_mask || controlled[id[e]])) {
+    const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
+    if (k > 0.0f) {
+      const ff_float3 a = ff_recapture_accel(
+          FF_F3(x[e], y[e], z[e]), FF_F3(vx[e], vy[e], vz[e]), FF_F3(rcentre[0], rcentre[1], rcentre[2]),
+          FF_F3(gravity.x, gravity.y, gravity.z), rparams.x, rparams.y, rparams.z, dt, k,
+          ff_recapture_weightless(wsum, cp_volume, full_at, fade));
+      bx += a.x, by += a.y, bz += a.z;
+      ax[e] = bx, ay[e] = by, az[e] = bz;
+      if (!isfinite(bx) || !isfinite(by) || !isfinite(bz)) ff_report_nonfinite(bad, tag);
+    }
+  }
   if (wsum <= 0.0f) return;
   const float scale = per_density ? 1.0f / rho[e] : unit_scale;
   const float kk = wv * wsum * scale;
@@ -41,9 +80,9 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
   // Gravity carried by the control (all of it inside the shape).
   const float held = gc * ff_control_held(wsum, cp_volume, full_at);
   fa = fa - FF_F3(gravity.x, gravity.y, gravity.z) * held;
-  const float rx = ax[e] + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
-  const float ry = ay[e] + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
-  const float rz = az[e] + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
+  const float rx = bx + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
+  const float ry = by + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
+  const float rz = bz + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
   ax[e] = rx, ay[e] = ry, az[e] = rz;
   if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
 }
@@ -60,8 +99,10 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
                              __global const float* svx, __global const float* svy, __global const float* svz,
                              __global const uint* start, float4 geo, int4 dims, float cell, float radius,
                              float cp_volume, float full_at, float wa, float wv, float gc, int per_density,
-                             float unit_scale, float4 gravity, float dt, __global float* ax,
-                             __global float* ay, __global float* az, __global int* bad, int tag) {
+                             float unit_scale, float4 gravity, float dt, __global const float* rcentre,
+                             __global const uint* id, __global const uchar* controlled, int use_mask,
+                             float4 rparams, __global float* ax, __global float* ay, __global float* az,
+                             __global uchar* reached, __global int* bad, int tag) {
   const uint e = get_global_id(0);
   if (e >= n) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
@@ -92,8 +133,9 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       }
     }
   }
-  control_forces_finish(e, fa, wsum, vsx, vsy, vsz, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
-                        per_density, unit_scale, gravity, dt, ax, ay, az, bad, tag);
+  control_forces_finish(e, fa, wsum, vsx, vsy, vsz, x, y, z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
+                        per_density, unit_scale, gravity, dt, rcentre, id, controlled, use_mask, rparams, ax,
+                        ay, az, reached, bad, tag);
 }
 
 // The same sums, 8 fluid particles per work-item (the fluid buffers hold a multiple of 8 floats).
@@ -104,7 +146,9 @@ __kernel void control_forces_lanes(
     __global const float* svx, __global const float* svy, __global const float* svz,
     __global const uint* start, float4 geo, int4 dims, float cell, float radius, float cp_volume,
     float full_at, float wa, float wv, float gc, int per_density, float unit_scale, float4 gravity, float dt,
-    __global float* ax, __global float* ay, __global float* az, __global int* bad, int tag) {
+    __global const float* rcentre, __global const uint* id, __global const uchar* controlled, int use_mask,
+    float4 rparams, __global float* ax, __global float* ay, __global float* az, __global uchar* reached,
+    __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
@@ -135,7 +179,8 @@ __kernel void control_forces_lanes(
   vstore8(vsx, 0, s[4]), vstore8(vsy, 0, s[5]), vstore8(vsz, 0, s[6]);
   const uint m = n - i0 < 8u ? n - i0 : 8u;
   for (uint l = 0; l < m; ++l)
-    control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], vx,
-                          vy, vz, rho, cp_volume, full_at, wa, wv, gc, per_density, unit_scale, gravity, dt,
-                          ax, ay, az, bad, tag);
+    control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], x, y,
+                          z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc, per_density, unit_scale,
+                          gravity, dt, rcentre, id, controlled, use_mask, rparams, ax, ay, az, reached, bad,
+                          tag);
 }

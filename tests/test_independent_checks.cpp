@@ -94,8 +94,11 @@ struct IouCase {
   double iou(const ff::FluidState& s) const {
     ff::UniformGrid g;
     g.build(s.size(), s.x.data(), s.y.data(), s.z.data(), p.fluid.smoothing_radius);
-    return ff::voxelIou(target, frame, 2, s.x.data(), s.y.data(), s.z.data(), g, p.fluid.particle_mass,
-                        p.fluid.smoothing_radius, p.fluid.rest_density, 0.5f);
+    // The padded grid's voxel counts (fluid beyond it: tests/test_fluid_shares.cpp).
+    const ff::IouCounts k =
+        ff::voxelIou(target, frame, 2, s.x.data(), s.y.data(), s.z.data(), g, p.fluid.particle_mass,
+                     p.fluid.smoothing_radius, p.fluid.rest_density, 0.5f);
+    return k.uni > 0 ? double(k.inter) / double(k.uni) : 0.0;
   }
 };
 

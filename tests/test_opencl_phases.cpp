@@ -309,6 +309,16 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant) {
   EXPECT_NEAR(mo.kinetic_energy, mc.kinetic_energy, kTol * mc.kinetic_energy);
   EXPECT_NEAR(mo.max_density, mc.max_density, kTol * mc.max_density);
   EXPECT_EQ(mo.control_count, mc.control_count);
+  // filled shares the iou's voxel counts; captured and stray count particles
+  // by the same shared formulas (ff_metrics.h) and the reach of the control
+  // forces, so they agree exactly.
+  std::printf("  filled cpu %.6f ocl %.6f   captured cpu %.6f ocl %.6f   stray cpu %.6f ocl %.6f\n",
+              mc.filled, mo.filled, mc.captured, mo.captured, mc.stray, mo.stray);
+  EXPECT_GT(mc.filled, 0.0);
+  EXPECT_GT(mc.captured, 0.0);
+  EXPECT_NEAR(mo.filled, mc.filled, 1e-3);
+  EXPECT_EQ(mo.captured, mc.captured);
+  EXPECT_EQ(mo.stray, mc.stray);
 
   // The next grid build reuses the metrics' index grid: still the CPU's order.
   cpu.buildGrid(), ocl.buildGrid();

@@ -76,8 +76,9 @@ TEST(VoxelIou, RunsOfEightLanesCountTheSameVoxelsAsThePlainDefinition) {
     grid.build(x.size(), x.data(), y.data(), z.data(), cell, lo, hi);
     for (const float fraction : {0.05f, 0.5f, 2.0f}) {
       const double ref = plainIou(t, frame, 2, x, y, z, grid, mass, h, fraction * rho0);
-      const double got =
+      const ff::IouCounts c =
           ff::voxelIou(t, frame, 2, x.data(), y.data(), z.data(), grid, mass, h, rho0, fraction);
+      const double got = c.uni > 0 ? double(c.inter) / double(c.uni) : 0.0;
       EXPECT_EQ(got, ref) << "cell " << cell << ", fraction " << fraction;
       EXPECT_GT(ref, 0.0) << "cell " << cell << ", fraction " << fraction;
     }

@@ -72,4 +72,63 @@ FF_FN ff_float3 ff_shape_match_dv(ff_float3 goal, ff_float3 x, float alpha, floa
   return (goal - x) * (alpha / dt);
 }
 
+/* Recapture: fluid out of the control's reach is brought back into the
+ * unfilled parts of the target from anywhere in the container
+ * (docs/CONTROL_UNITS.md, "Recapture").
+ *
+ * How much a control particle of density scale s counts as unfilled: 0 while
+ * its kernel is at least half filled (a filled surface particle sits at
+ * s = 1/2), rising to 1 when it is empty. */
+FF_FN float ff_recapture_weight(float s) {
+  return FF_FMAX(0.0f, 2.0f * s - 1.0f);
+}
+
+/* The weight of a control particle in the recapture's centre: its unfilled
+ * weight, plus a little so that a filled shape still has a centre (its
+ * centroid). */
+FF_FN float ff_recapture_centre_weight(float s) {
+  return ff_recapture_weight(s) + 0.01f;
+}
+
+/* The recapture's strength from the unfilled weight u = sum_i
+ * ff_recapture_weight(s_i) of nc control particles: full while at least a
+ * tenth of the shape is unfilled, fading linearly to 0 as it fills, so that
+ * a filled shape draws no more fluid into itself. */
+FF_FN float ff_recapture_fade(float u, float nc) {
+  return nc > 0.0f ? FF_FMIN(1.0f, u / (0.1f * nc)) : 0.0f;
+}
+
+/* How strongly the recapture acts on a fluid particle, from the fade: by the
+ * share of it that is out of the control's reach (1 where no control particle
+ * is within the radius, 0 where the control carries its whole weight:
+ * ff_control_held without the compensation factor). Fluid wholly out of reach
+ * is drawn back at least at half strength however full the shape is: it then
+ * gathers at the shape, where eq. 4-5 take in only what has room. */
+FF_FN float ff_recapture_strength(float wsum, float v_c, float full_at, float fade) {
+  const float share = 1.0f - ff_control_held(wsum, v_c, full_at);
+  return wsum > 0.0f ? share * fade : FF_FMAX(fade, 0.5f);
+}
+
+/* The share of gravity the recapture switches off: all of it for fluid wholly
+ * out of reach (so a pool lifts off the floor at any strength), else as
+ * ff_recapture_strength. */
+FF_FN float ff_recapture_weightless(float wsum, float v_c, float full_at, float fade) {
+  return wsum > 0.0f ? ff_recapture_strength(wsum, v_c, full_at, fade) : 1.0f;
+}
+
+/* The recapture acceleration of a fluid particle at x with velocity v,
+ * towards the centre c of the unfilled control particles: the share kg of its
+ * gravity g is switched off (ff_recapture_weightless) and its velocity relaxes
+ * with strength k (ff_recapture_strength; implicitly, at `rate` per second,
+ * over dt) towards `speed` along c - x, slowing within `radius` of c. The dot
+ * products are written out so that both compilers round them alike. */
+FF_FN ff_float3 ff_recapture_accel(ff_float3 x, ff_float3 v, ff_float3 c, ff_float3 g, float speed,
+                                   float rate, float radius, float dt, float k, float kg) {
+  const ff_float3 d = c - x;
+  const float dist = FF_SQRT((d.x * d.x + d.y * d.y) + d.z * d.z);
+  const float vmag = speed * FF_FMIN(1.0f, dist / radius);
+  const ff_float3 vd = dist > 1e-12f ? d * (vmag / dist) : FF_F3(0.0f, 0.0f, 0.0f);
+  return (vd - v) * (k * rate / (1.0f + dt * rate)) - g * kg;
+}
+
 #endif /* FF_CONTROL_H */

@@ -113,9 +113,11 @@ int runScene(const RunOptions& o) {
     if (exporter) exportFrameIfDue(sim, *exporter);
     if (print) {
       progress.interrupt();
-      std::printf("  t=%6.3f s  iou=%.3f  coverage=%.3f  max_speed=%.3f m/s  density_error=%.3f  target=%s\n",
-                  m.time, m.iou, m.coverage, m.max_speed, m.density_error,
-                  sim.target() ? sim.target()->label.c_str() : "none");
+      std::printf(
+          "  t=%6.3f s  iou=%.3f  coverage=%.3f  filled=%.3f  stray=%.3f  max_speed=%.3f m/s  "
+          "density_error=%.3f  target=%s\n",
+          m.time, m.iou, m.coverage, m.filled, m.stray, m.max_speed, m.density_error,
+          sim.target() ? sim.target()->label.c_str() : "none");
     }
     const std::string saved = checkpoints.due(sim);
     if (!saved.empty()) {

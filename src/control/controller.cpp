@@ -179,8 +179,20 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   const float wa = cp_.attraction, wv = cp_.velocity, gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
   const float full_at = ff_control_full_coverage(cp_volume, r, coef);
+  // Recapture: the centre of the unfilled control particles and its fade.
+  float ucx = 0.0f, ucy = 0.0f, ucz = 0.0f, cw = 0.0f, uw = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    const float w = ff_recapture_centre_weight(fields_.s[i]);
+    ucx += w * set_.x[i], ucy += w * set_.y[i], ucz += w * set_.z[i], cw += w;
+    uw += ff_recapture_weight(fields_.s[i]);
+  }
+  const ff_float3 ucentre = FF_F3(ucx / cw, ucy / cw, ucz / cw);
+  const float fade = cp_.recapture > 0.0f ? ff_recapture_fade(uw, float(n)) : 0.0f;
+  const float rspeed = cp_.recaptureSpeed(f.gravity), rrate = cp_.recaptureRate(f.gravity);
+  const ff_float3 grav = FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]);
   const std::vector<uint32_t>& groups = *sf.groups;
   const long ngroups = long(groups.size() / 2);
+  reached_.assign(f.n, 0);
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {
@@ -191,8 +203,19 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     for (uint32_t k = b; k < e; ++k) {
       const size_t l = k - b;
       const float wsum = sums[24 + l];
-      if (wsum <= 0.0f) continue;
       const size_t i = sf.order ? sf.order[k] : k;
+      const bool recaptured = fade > 0.0f && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
+      if (recaptured) {
+        const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
+        if (k > 0.0f) {
+          const ff_float3 a = ff_recapture_accel(
+              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), ucentre, grav, rspeed, rrate,
+              r, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
+          ax[i] += a.x, ay[i] += a.y, az[i] += a.z;
+        }
+      }
+      if (wsum <= 0.0f) continue;
+      reached_[i] = 1;
       const float scale = per_density ? 1.0f / (f.rho ? f.rho[i] : f.rest_density) : unit_scale;
       const float kv = wv * wsum * scale;
       ff_float3 fa = FF_F3(sums[l], sums[8 + l], sums[16 + l]) * (wa * scale);
@@ -252,8 +275,8 @@ size_t Controller::memoryBytes() const {
   for (const auto* v : {&set_.clusters.start, &set_.clusters.members, &set_.clusters.of_start,
                         &set_.clusters.of, &fluid_groups_})
     uints += v->capacity();
-  return floats * sizeof(float) + uints * sizeof(uint32_t) + q_.capacity() * sizeof(ff_quat) +
-         cp_grid_.memoryBytes() + fluid_grid_.memoryBytes();
+  return reached_.capacity() + floats * sizeof(float) + uints * sizeof(uint32_t) +
+         q_.capacity() * sizeof(ff_quat) + cp_grid_.memoryBytes() + fluid_grid_.memoryBytes();
 }
 
 int Controller::advance(float dt) {

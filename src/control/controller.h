@@ -6,6 +6,7 @@
 // "easy to embed" claim). The OpenMP backend uses it for its control phases.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "control/control_set.h"
@@ -31,6 +32,10 @@ struct FluidView {
   float rest_density = 1.0f;   // used instead of rho when rho is null
   float mass = 1.0f;           // particle mass; only read with ControlForceUnits::Force
   float gravity[3] = {0.0f, 0.0f, 0.0f};  // the host solver's gravity (for gravity compensation)
+  // Optional: the fluid the control shapes, as a flag per particle identity
+  // (id[i] for particle i); only that fluid is recaptured. Null: all of it.
+  const uint32_t* id = nullptr;
+  const uint8_t* controlled_by_id = nullptr;
 };
 
 class Controller {
@@ -78,6 +83,9 @@ class Controller {
   const std::vector<float>& goalY() const { return gy_; }
   const std::vector<float>& goalZ() const { return gz_; }
   double clock() const { return clock_; }
+  // Per fluid particle (in the view's order) of the last addForces: 1 if a
+  // control particle was within the control radius, else 0 (the metric `stray`).
+  const std::vector<uint8_t>& reached() const { return reached_; }
   // The control particles' grid of the last addForces (cells of radius / FF_CONTROL_GRID_DIVISIONS).
   const UniformGrid& controlGrid() const { return cp_grid_; }
   size_t memoryBytes() const;
@@ -102,6 +110,7 @@ class Controller {
   bool sm_finite_ = true;
   UniformGrid cp_grid_, fluid_grid_;
   std::vector<uint32_t> fluid_groups_;
+  std::vector<uint8_t> reached_;
   std::vector<float> fx_, fy_, fz_, fvx_, fvy_, fvz_;       // the fluid in fluid_grid_ order (no view grid)
   std::vector<float> sx_, sy_, sz_, ss_, svx_, svy_, svz_;  // control particles in cp_grid_ order
   std::vector<ff_quat> q_;

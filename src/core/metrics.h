@@ -8,7 +8,7 @@ namespace ff {
 struct StepMetrics {
   long step = 0;
   double time = 0.0;
-  double iou = 0.0;             // target voxels (at the control particles' best rigid fit) vs fluid voxels
+  double iou = 0.0;             // target voxels (at the control particles' best rigid fit) vs all fluid
   double coverage = 0.0;        // mean of 1 - s_i over the control particles
   double max_speed = 0.0;       // m/s
   double density_error = 0.0;   // mean |rho - rho0| / rho0
@@ -22,15 +22,18 @@ struct StepMetrics {
   long solver_iterations = 0;
   long solver_capped = 0;
   double max_density_error = 0.0;  // max (rho - rho0) / rho0, the largest compression
+  double filled = 0.0;             // share of the target's voxels that hold fluid
+  double captured = 0.0;           // share of the controlled fluid inside the target
+  double stray = 0.0;              // share of the controlled fluid out of every control particle's reach
 };
 
 // The metrics as a table row: the column names (the CSV header of
 // `flowform run --metrics`, the keys of the Python module's arrays) and the
 // values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 13> kMetricColumns = {
+inline constexpr std::array<const char*, 16> kMetricColumns = {
     "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
     "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-    "solver_capped"};
+    "solver_capped",  "filled",        "captured",    "stray"};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),
@@ -45,7 +48,10 @@ inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics&
           double(m.substeps),
           double(m.solver_iterations),
           m.max_density_error,
-          double(m.solver_capped)};
+          double(m.solver_capped),
+          m.filled,
+          m.captured,
+          m.stray};
 }
 
 }  // namespace ff

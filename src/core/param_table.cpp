@@ -78,6 +78,9 @@ const std::vector<ParamInfo>& paramTable() {
       {"control", "gravity_compensation", T::Real, 0.0, 1.0, false,
        "share of gravity the control particles carry for the fluid they hold",
        FF_FIELD(control.gravity_compensation)},
+      {"control", "recapture", T::Real, 0.0, 10.0, false,
+       "recapture of fluid out of the control's reach: speed in units of sqrt(g r) (0 = off)",
+       FF_FIELD(control.recapture)},
       {"control", "units", T::Units, 0.0, 0.0, false,
        "how eq. 4 and 6 act: \"acceleration\", \"force_density\" or \"force\"", FF_FIELD(control.units)},
 

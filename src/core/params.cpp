@@ -23,6 +23,21 @@ int FluidParams::substepsFor(double max_density, double max_speed) const {
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }
 
+namespace {
+float gravityScale(const float g[3]) {
+  const float m = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  return m > 0.0f ? m : 9.81f;
+}
+}  // namespace
+
+float ControlParams::recaptureSpeed(const float g[3]) const {
+  return recapture * std::sqrt(gravityScale(g) * radius);
+}
+
+float ControlParams::recaptureRate(const float g[3]) const {
+  return std::sqrt(gravityScale(g) / radius);
+}
+
 double ShapeMatchParams::clustersPerParticle() const {
   const double per_axis =
       std::floor(2.0 * double(cluster_half_width) / double(std::max(1, cluster_stride))) + 1.0;

@@ -59,6 +59,14 @@ struct ControlParams {
   // 0 = none (the paper's text), 1 = full inside the target shape.
   float gravity_compensation = 1.0f;
   ControlForceUnits units = ControlForceUnits::Acceleration;
+  // Recapture of the fluid out of the control's reach (0 = off, the paper's
+  // text): it flies back to the target's unfilled part at
+  // recapture * sqrt(g r) (g: gravity's magnitude, r: the radius), its
+  // velocity relaxing at sqrt(g / r) per second, with its gravity switched off.
+  float recapture = 1.0f;
+  // The recapture's speed and relaxation rate for gravity g (9.81 m/s^2 when g is 0).
+  float recaptureSpeed(const float g[3]) const;
+  float recaptureRate(const float g[3]) const;
 };
 
 struct ShapeMatchParams {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "control/shape_matching.h"
+#include "metrics/fluid_shares.h"
 #include "parallel/parallel_grain.h"
 
 namespace ff {
@@ -59,6 +60,8 @@ FluidView CpuBackend::view() const {
   v.rest_density = params_.fluid.rest_density;
   v.mass = params_.fluid.particle_mass;
   for (int d = 0; d < 3; ++d) v.gravity[d] = params_.fluid.gravity[d];
+  v.id = s.id.data();
+  v.controlled_by_id = controlled_by_id_.empty() ? nullptr : controlled_by_id_.data();
   return v;
 }
 
@@ -115,6 +118,11 @@ size_t CpuBackend::memoryBytes() const {
   return fluid_.memoryBytes() + controller_.memoryBytes() + solver_->memoryBytes();
 }
 
+void CpuBackend::setMetricsTarget(const TargetShape* target) {
+  target_ = target;
+  target_voxels_ = target ? targetVoxelCount(*target) : 0;
+}
+
 StepMetrics CpuBackend::computeMetrics() {
   StepMetrics m;
   const FluidState& s = fluid_.s;
@@ -150,8 +158,15 @@ StepMetrics CpuBackend::computeMetrics() {
         buildFluidIndex(fluid_, h, box_);
         fluid_.grid_current = true;
       }
-      m.iou =
-          voxelIou(*target_, frame_, 2, s.x.data(), s.y.data(), s.z.data(), fluid_.grid, mass, h, rho0, 0.5f);
+      const int pad = 2;
+      const IouCounts c = voxelIou(*target_, frame_, pad, s.x.data(), s.y.data(), s.z.data(), fluid_.grid,
+                                   mass, h, rho0, 0.5f);
+      const std::vector<uint8_t>& reached = controller_.reached();
+      const FluidShares sh =
+          fluidShares(*target_, frame_, pad, s.x.data(), s.y.data(), s.z.data(), s.id.data(), size_t(n),
+                      controlled_by_id_.empty() ? nullptr : controlled_by_id_.data(),
+                      reached.size() == size_t(n) ? reached.data() : nullptr);
+      setShapeMetrics(m, c, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
     }
   }
   return m;

@@ -20,7 +20,8 @@ class CpuBackend : public Backend {
   void init(const Params& params, const ContainerDesc& box, const FluidState& fluid) override;
   void setParams(const Params& params) override;
   void setControl(ControlSet set) override;
-  void setMetricsTarget(const TargetShape* target) override { target_ = target; }
+  void setMetricsTarget(const TargetShape* target) override;
+  void setControlledFluid(std::vector<uint8_t> by_id) override { controlled_by_id_ = std::move(by_id); }
 
   void buildGrid() override;
   void computeDensity() override;
@@ -59,6 +60,8 @@ class CpuBackend : public Backend {
   std::unique_ptr<PressureSolver> solver_;
   Controller controller_;
   const TargetShape* target_ = nullptr;
+  long target_voxels_ = 0;
+  std::vector<uint8_t> controlled_by_id_;
   RigidFrame frame_;
   NonFiniteLog log_;
 };

@@ -56,8 +56,9 @@ std::vector<uint32_t>& threadSpans() {
 
 }  // namespace
 
-double voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x, const float* y,
-                const float* z, const UniformGrid& grid, float mass, float h, float rho0, float fraction) {
+IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x,
+                   const float* y, const float* z, const UniformGrid& grid, float mass, float h, float rho0,
+                   float fraction) {
   const VoxelGrid& g = target.grid;
   const ff_mat3 r = ff_quat_to_mat3(frame.q);
   const float threshold = fraction * rho0;
@@ -89,7 +90,9 @@ double voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, con
       uni += (in_target[l] || in_fluid) ? 1 : 0;
     }
   }
-  return uni > 0 ? double(inter) / double(uni) : 0.0;
+  IouCounts c;
+  c.inter = inter, c.uni = uni;
+  return c;
 }
 
 }  // namespace ff

@@ -1,4 +1,5 @@
-// iou.h - voxel intersection over union between the target and the fluid.
+// iou.h - voxel intersection over union between the target and the fluid
+// (the voxels of the target's padded grid; fluid beyond it: fluid_shares.h).
 #pragma once
 #include "ff_rotation.h"
 #include "grid/uniform_grid.h"
@@ -16,9 +17,13 @@ struct RigidFrame {
 // the world by `frame` (x_world = R (x_rest - rest_c) + c). A voxel is a target
 // voxel if it is inside the shape, a fluid voxel if the SPH density of the
 // fluid particles at its centre is at least `fraction` * rho0. Returns
-// |target & fluid| / |target | fluid|. `grid` indexes the particles (any order)
-// with cell size >= h.
-double voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x, const float* y,
-                const float* z, const UniformGrid& grid, float mass, float h, float rho0, float fraction);
+// |target & fluid| and |target | fluid| over the padded grid. `grid` indexes
+// the particles (any order) with cell size >= h.
+struct IouCounts {
+  long inter = 0, uni = 0;
+};
+IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x,
+                   const float* y, const float* z, const UniformGrid& grid, float mass, float h, float rho0,
+                   float fraction);
 
 }  // namespace ff

@@ -3,6 +3,7 @@
 // of a step on it. Simulation calls the phases in order and times them.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,9 @@ class Backend {
   virtual void setControl(ControlSet set) = 0;
   // The target whose voxels the iou metric compares against (null: no iou).
   virtual void setMetricsTarget(const TargetShape* target) = 0;
+  // The fluid the control shapes, for the metrics captured and stray: a flag
+  // per particle id (empty: all the fluid).
+  virtual void setControlledFluid(std::vector<uint8_t> by_id) = 0;
 
   virtual void buildGrid() = 0;
   virtual void computeDensity() = 0;

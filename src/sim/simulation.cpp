@@ -77,12 +77,16 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
   next_schedule_ = size_t(next);
   r.pod(has_target_), r.pod(controlled_), r.pod(target_volume_);
   r.pod(metrics_requested_), r.pod(metrics_fresh_), r.pod(unchecked_from_);
+  r.vec(controlled_by_id_);
+  r.check(controlled_by_id_.empty() || controlled_by_id_.size() == makeFluid(scene_).size(),
+          "the controlled fluid's flags do not match the fluid");
   if (has_target_) {
     target_spec_ = readTargetState(r);
     target_ = &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid));
   }
   backend_->loadState(r);
   backend_->setMetricsTarget(target_);
+  backend_->setControlledFluid(controlled_by_id_);
   r.check(r.atEnd(), "there are bytes after the end of the state");
 }
 
@@ -92,6 +96,7 @@ void Simulation::saveState(StateWriter& w) const {
   w.pod(uint64_t(next_schedule_));
   w.pod(has_target_), w.pod(controlled_), w.pod(target_volume_);
   w.pod(metrics_requested_), w.pod(metrics_fresh_), w.pod(unchecked_from_);
+  w.vec(controlled_by_id_);
   if (has_target_) writeTargetState(w, target_spec_);
   backend_->saveState(w);
 }
@@ -222,17 +227,18 @@ void Simulation::setTarget(const TargetSpec& spec) {
       return false;
     };
   }
+  auto inRegion = [&r](const Vec3& p) {
+    if (r.kind == RegionDesc::Kind::Box)
+      return (p.array() >= r.min.array()).all() && (p.array() <= r.max.array()).all();
+    if (r.kind == RegionDesc::Kind::Sphere) return (p - r.center).squaredNorm() <= r.radius * r.radius;
+    return true;
+  };
   std::vector<float> px, py, pz;
   auto collect = [&](bool shape_only) {
     px.clear(), py.clear(), pz.clear();
     for (size_t i = 0; i < s.size(); ++i) {
       Vec3 p(s.x[i], s.y[i], s.z[i]);
-      bool in = true;
-      if (r.kind == RegionDesc::Kind::Box)
-        in = (p.array() >= r.min.array()).all() && (p.array() <= r.max.array()).all();
-      else if (r.kind == RegionDesc::Kind::Sphere)
-        in = (p - r.center).squaredNorm() <= r.radius * r.radius;
-      if (!in || (shape_only && !inCurrentShape(p))) continue;
+      if (!inRegion(p) || (shape_only && !inCurrentShape(p))) continue;
       px.push_back(p.x()), py.push_back(p.y()), pz.push_back(p.z());
     }
   };
@@ -267,14 +273,24 @@ void Simulation::setTarget(const TargetSpec& spec) {
   target_spec_ = spec;
   has_target_ = true;
   controlled_ = count;
+  // The controlled fluid of the metrics: the region's fluid (by identity).
+  controlled_by_id_.clear();
+  if (r.kind != RegionDesc::Kind::All) {
+    controlled_by_id_.assign(s.size(), 0);
+    for (size_t i = 0; i < s.size(); ++i)
+      controlled_by_id_[s.id[i]] = inRegion(Vec3(s.x[i], s.y[i], s.z[i])) ? 1 : 0;
+  }
   backend_->setControl(placeControlParticles(*target_, lo, hi, scene_.params.shape, scene_.container.min,
                                              scene_.container.max));
   backend_->setMetricsTarget(target_);
+  backend_->setControlledFluid(controlled_by_id_);
 }
 
 void Simulation::clearTarget() {
   backend_->setControl(ControlSet());
   backend_->setMetricsTarget(nullptr);
+  controlled_by_id_.clear();
+  backend_->setControlledFluid(controlled_by_id_);
   target_ = nullptr;
   has_target_ = false;
 }

@@ -93,6 +93,7 @@ class Simulation {
   double target_volume_ = 0.0;  // the rest volume the current target was scaled to
   long step_ = 0;
   long controlled_ = 0;
+  std::vector<uint8_t> controlled_by_id_;  // the controlled fluid by particle id (empty: all of it)
   double time_ = 0.0;
   StepMetrics metrics_;
   std::array<double, size_t(Phase::Count)> phase_ms_{};

@@ -115,6 +115,8 @@ void resetSimulation(ViewerUi& ui, ViewerSession& session, bool keep_edits) {
     if (!keep_edits) ui.chosen = -1;
     ui.iou.clear();
     ui.coverage.clear();
+    ui.filled.clear();
+    ui.stray.clear();
     ui.params_error.clear();
     ui.frame_dirty = true;
     ui.report(keep_edits ? "reset (edits kept)" : "reset to the scene as loaded", false);

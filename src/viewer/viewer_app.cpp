@@ -277,6 +277,8 @@ void stepFrame(ViewerUi& ui, ViewerSession& session, const ScriptCursor* script)
     for (size_t p = 0; p < size_t(Phase::Count); ++p) ui.phase_ms[p].add(sim.lastStepMs()[p]);
     ui.iou.push(float(sim.metrics().iou));
     ui.coverage.push(float(sim.metrics().coverage));
+    ui.filled.push(float(sim.metrics().filled));
+    ui.stray.push(float(sim.metrics().stray));
     ui.frame_dirty = true;
     if (msSince(t0) >= double(ui.frame_budget_ms)) break;
   }

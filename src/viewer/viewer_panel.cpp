@@ -312,6 +312,7 @@ void metricsSection(ViewerUi& ui, ViewerSession& session) {
   const StepMetrics& m = sim.metrics();
   ImGui::Text("fluid particles %ld   control particles %ld", session.scene().fluidCount(), m.control_count);
   ImGui::Text("iou %.3f   coverage %.3f", m.iou, m.coverage);
+  ImGui::Text("filled %.3f   captured %.3f   stray %.3f", m.filled, m.captured, m.stray);
   ImGui::Text("max speed %.3f m/s   density error %.3f", m.max_speed, m.density_error);
   const float seconds = float(ui.iou.count()) * session.params().fluid.time_step;
   char title[64];
@@ -319,6 +320,10 @@ void metricsSection(ViewerUi& ui, ViewerSession& session) {
   plotWithScale("##iou", title, ui.iou, 0.0f, 1.0f, 70.0f);
   std::snprintf(title, sizeof title, "coverage, last %.1f s", double(seconds));
   plotWithScale("##coverage", title, ui.coverage, 0.0f, 1.0f, 50.0f);
+  std::snprintf(title, sizeof title, "filled, last %.1f s", double(seconds));
+  plotWithScale("##filled", title, ui.filled, 0.0f, 1.0f, 50.0f);
+  std::snprintf(title, sizeof title, "stray (out of the control's reach), last %.1f s", double(seconds));
+  plotWithScale("##stray", title, ui.stray, 0.0f, 1.0f, 50.0f);
 }
 
 void messagesSection(const ViewerUi& ui) {

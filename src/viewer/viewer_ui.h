@@ -83,7 +83,7 @@ struct ViewerUi {
   bool frame_dirty = true;
 
   // Statistics.
-  History iou{2000}, coverage{2000};
+  History iou{2000}, coverage{2000}, filled{2000}, stray{2000};
   std::array<Smoothed, size_t(Phase::Count)> phase_ms;
   Smoothed step_ms, sim_ms_per_frame, render_ms, frame_ms;
   int steps_last_frame = 0;

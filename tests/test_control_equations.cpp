@@ -73,8 +73,12 @@ ff::ControlSet controlSet(const std::vector<V3>& pos, const std::vector<V3>& vel
   return s;
 }
 
+// The paper's constants, without the recapture (an addition that the paper's
+// equations do not have; tests/test_recapture.cpp covers it).
 ff::Params paper() {
-  return ff::presetParams("paper");
+  ff::Params p = ff::presetParams("paper");
+  p.control.recapture = 0.0f;
+  return p;
 }
 
 // Runs computeScale and addForces; returns the accelerations of the fluid.

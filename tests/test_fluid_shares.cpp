@@ -78,13 +78,19 @@ ff::RigidFrame turnedFrame(const ff::TargetShape& t) {
   return f;
 }
 
+// One particle at the centre of every voxel of the whole target grid.
+Fluid filling(const ff::TargetShape& t, const ff::RigidFrame& f) {
+  Fluid fl;
+  for (int k = 0; k < t.grid.nz; ++k)
+    for (int j = 0; j < t.grid.ny; ++j)
+      for (int i = 0; i < t.grid.nx; ++i) fl.add(world(t, f, i, j, k));
+  return fl;
+}
+
 TEST(FluidShares, FluidExactlyFillingTheTargetScoresOne) {
   const ff::TargetShape t = boxTarget(10, 8, 6);
   const ff::RigidFrame f = turnedFrame(t);
-  Fluid fl;
-  for (int k = 0; k < 6; ++k)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 10; ++i) fl.add(world(t, f, i, j, k));
+  Fluid fl = filling(t, f);
   const std::vector<uint8_t> reached(fl.size(), 1);
   const ff::StepMetrics m = measure(t, f, fl, nullptr, reached.data());
   EXPECT_DOUBLE_EQ(m.iou, 1.0);
@@ -98,10 +104,7 @@ TEST(FluidShares, FluidFarFromTheTargetCountsAgainstTheIou) {
   // grid: 480 target voxels against 480 + 240 in the union.
   const ff::TargetShape t = boxTarget(10, 8, 6);
   const ff::RigidFrame f = turnedFrame(t);
-  Fluid fl;
-  for (int k = 0; k < 6; ++k)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 10; ++i) fl.add(world(t, f, i, j, k));
+  Fluid fl = filling(t, f);
   const size_t in_shape = fl.size();
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 6; ++j)

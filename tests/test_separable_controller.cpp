@@ -31,6 +31,7 @@ TEST(SeparableController, AttractionAloneAcceleratesAsItsPotentialSays) {
   ff::ControlParams cp;  // the paper's constants
   cp.velocity = 0.0f;
   cp.gravity_compensation = 0.0f;
+  cp.recapture = 0.0f;
   ff::ShapeMatchParams sm;
   ff::Controller c;
   c.setParams(cp, sm);
@@ -80,6 +81,7 @@ TEST(SeparableController, VelocityAloneRelaxesTowardsTheControlVelocity) {
   ff::ControlParams cp;
   cp.attraction = 0.0f;
   cp.gravity_compensation = 0.0f;
+  cp.recapture = 0.0f;
   ff::ShapeMatchParams sm;
   ff::Controller c;
   c.setParams(cp, sm);

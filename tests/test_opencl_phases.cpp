@@ -227,9 +227,16 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant) {
     expectGridEqual("control grid (OpenMP backend)", cpu.controller().controlGrid(), snap, true);
   }
   ocl.readAccel(ax, ay, az);
-  expectClose("with control ax", cpu.fluid().ax, ax);
-  expectClose("with control ay", cpu.fluid().ay, ay);
-  expectClose("with control az", cpu.fluid().az, az);
+  // The control's accelerations are judged on the scale of gravity at least:
+  // every particle feels it, and a net acceleration near zero (gravity
+  // carried by the control, or the recapture's relaxation towards its speed
+  // cancelling the particle's own) would otherwise make one rounding of its
+  // terms look like a large relative error. Under fuse-all emulation with the
+  // recapture on, relative to |a| alone, the largest was 1.2e-5.
+  const double g = std::fabs(double(params.fluid.gravity[1]));
+  expectClose("with control ax", cpu.fluid().ax, ax, g);
+  expectClose("with control ay", cpu.fluid().ay, ay, g);
+  expectClose("with control az", cpu.fluid().az, az, g);
 
   // The pressure solve (WCSPH: symmetric pressure force and the walls'), added last.
   cpu.solvePressure(dt), ocl.solvePressure(dt);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "control/placement.h"
@@ -268,6 +269,10 @@ void Simulation::setTarget(const TargetSpec& spec) {
   // the new one is accepted.
   const TargetShape& shape = cache_.get(spec, volume, defaultVoxelSize(fp), target_);
   checkClusterMemory(scene_.params.shape, shape.reference.size(), scene_.source);
+  // Placed before any state changes: if placement throws, the simulation and
+  // the backend keep the previous target, which the cache still holds.
+  ControlSet placed =
+      placeControlParticles(shape, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max);
   target_ = &shape;
   target_volume_ = volume;
   target_spec_ = spec;
@@ -280,8 +285,7 @@ void Simulation::setTarget(const TargetSpec& spec) {
     for (size_t i = 0; i < s.size(); ++i)
       controlled_by_id_[s.id[i]] = inRegion(Vec3(s.x[i], s.y[i], s.z[i])) ? 1 : 0;
   }
-  backend_->setControl(placeControlParticles(*target_, lo, hi, scene_.params.shape, scene_.container.min,
-                                             scene_.container.max));
+  backend_->setControl(std::move(placed));
   backend_->setMetricsTarget(target_);
   backend_->setControlledFluid(controlled_by_id_);
 }

@@ -114,14 +114,12 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
             y1 = ff_cell_coord(ye + reach, geo.y, geo.w, dims.y);
   ff_float3 fa = FF_F3(0.0f, 0.0f, 0.0f);
   float wsum = 0.0f, vsx = 0.0f, vsy = 0.0f, vsz = 0.0f;
+  const float p3[3] = {xe, ye, ze}, o3[3] = {geo.x, geo.y, geo.z};
+  const int n3[3] = {dims.x, dims.y, dims.z};
   for (int cz = z0; cz <= z1; ++cz) {
-    const float gz = ff_slab_gap(ze, ze, cz, dims.z, geo.z, cell);
     for (int cy = y0; cy <= y1; ++cy) {
-      const float gy = ff_slab_gap(ye, ye, cy, dims.y, geo.y, cell);
-      int x0, x1;
-      if (!ff_row_cells(xe, xe, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
-      const uint row = ff_cell_index(0, cy, cz, dims.x, dims.y);
-      const uint b = start[row + (uint)x0], en = start[row + (uint)x1 + 1u];
+      uint b, en;
+      if (!ff_row_span(start, p3, p3, reach, cy, cz, o3, cell, geo.w, n3, &b, &en)) continue;
       for (uint k = b; k < en; ++k) {
         const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
         const float d2 = FF_DOT(d, d);

@@ -47,14 +47,12 @@ __kernel void control_scale(__global const float* cx, __global const float* cy, 
             y1 = ff_cell_coord(py + reach, geo.y, geo.w, dims.y);
   const int8 iota = (int8)(0, 1, 2, 3, 4, 5, 6, 7);
   float8 sum = (float8)(0.0f), ux = sum, uy = sum, uz = sum;
+  const float p3[3] = {px, py, pz}, o3[3] = {geo.x, geo.y, geo.z};
+  const int n3[3] = {dims.x, dims.y, dims.z};
   for (int z = z0; z <= z1; ++z) {
-    const float gz = ff_slab_gap(pz, pz, z, dims.z, geo.z, cell);
     for (int y = y0; y <= y1; ++y) {
-      const float gy = ff_slab_gap(py, py, y, dims.y, geo.y, cell);
-      int x0, x1;
-      if (!ff_row_cells(px, px, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
-      const uint row = ff_cell_index(0, y, z, dims.x, dims.y);
-      const uint b = start[row + (uint)x0], e = start[row + (uint)x1 + 1u];
+      uint b, e;
+      if (!ff_row_span(start, p3, p3, reach, y, z, o3, cell, geo.w, n3, &b, &e)) continue;
       for (uint k = b & ~7u; k < e; k += 8u) {
         const float8 dx = px - vload8(0, fx + k), dy = py - vload8(0, fy + k), dz = pz - vload8(0, fz + k);
         const int8 kk = iota + (int)k;
@@ -93,14 +91,12 @@ __kernel void control_scale_by_lane(__global const float* cx, __global const flo
               z1 = ff_cell_coord(pz + reach, geo.z, geo.w, dims.z);
     const int y0 = ff_cell_coord(py - reach, geo.y, geo.w, dims.y),
               y1 = ff_cell_coord(py + reach, geo.y, geo.w, dims.y);
+    const float p3[3] = {px, py, pz}, o3[3] = {geo.x, geo.y, geo.z};
+    const int n3[3] = {dims.x, dims.y, dims.z};
     for (int z = z0; z <= z1; ++z) {
-      const float gz = ff_slab_gap(pz, pz, z, dims.z, geo.z, cell);
       for (int y = y0; y <= y1; ++y) {
-        const float gy = ff_slab_gap(py, py, y, dims.y, geo.y, cell);
-        int x0, x1;
-        if (!ff_row_cells(px, px, gy * gy + gz * gz, reach, geo.x, geo.w, dims.x, &x0, &x1)) continue;
-        const uint row = ff_cell_index(0, y, z, dims.x, dims.y);
-        const uint b = start[row + (uint)x0], e = start[row + (uint)x1 + 1u];
+        uint b, e;
+        if (!ff_row_span(start, p3, p3, reach, y, z, o3, cell, geo.w, n3, &b, &e)) continue;
         for (uint k = (b & ~7u) + lane; k < e; k += 8u) {
           if (k < b) continue;
           const float dx = px - fx[k], dy = py - fy[k], dz = pz - fz[k];

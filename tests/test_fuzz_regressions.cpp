@@ -146,3 +146,31 @@ TEST(FuzzRegressions, PlyMagicInAnyLetterCaseIsChecked) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(FuzzRegressions, OffWithoutTheKeywordHasItsCountsChecked) {
+  // An .off file whose "OFF" sits only inside a comment: assimp reads the
+  // counts from the first words all the same (the keyword is optional) and
+  // asked for 62 GB; the check looked for the keyword and let it through.
+  fftest::TempDir tmp("fuzz_off_nokeyword");
+  const std::string what =
+      replay("mesh_off", kFuzzDir / "regressions" / "mesh_off" / "counts_without_keyword.off", tmp);
+  EXPECT_NE(what.find("garbled or truncated OFF file"), std::string::npos) << what;
+  const fs::path f = tmp.write("nokey.off", "# a comment\n99999999999 1 0\n0 0 0\n");
+  try {
+    ff::loadMesh(f.string());
+    ADD_FAILURE() << "accepted";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("declares 99999999999 vertices"), std::string::npos) << e.what();
+  }
+  // The same words in a file of another kind are not OFF counts.
+  const fs::path obj = tmp.write("words.obj", "99999999999 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  try {
+    ff::loadMesh(obj.string());
+  } catch (const ff::Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("OFF"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -273,16 +273,27 @@ std::vector<std::pair<size_t, size_t>> offWords(const std::string& text, size_t 
   return out;
 }
 
+bool hasOffExtension(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.size() - dot != 4) return false;
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = char(std::tolower((unsigned char)c));
+  return ext == "off";
+}
+
 void checkOff(const std::string& path, const std::string& head, uintmax_t file_size) {
   const auto first = offWords(head, 1);
   if (first.empty()) return;
   const std::string token = head.substr(first[0].first, first[0].second - first[0].first);
   const size_t keyword = token.find("OFF");
-  if (keyword == std::string::npos) return;
+  // The keyword is optional in an .off file (assimp then reads the counts
+  // from its first words); any other file without it is not OFF.
+  if (keyword == std::string::npos && !hasOffExtension(path)) return;
   // The counts follow the keyword, even glued to it ("OFF8 6 0"); after
   // "nOFF" comes the dimension first.
-  const std::string rest = head.substr(first[0].first + keyword + 3);
-  const size_t skip = token == "nOFF" ? 1 : 0;
+  const std::string rest =
+      head.substr(keyword == std::string::npos ? first[0].first : first[0].first + keyword + 3);
+  const size_t skip = keyword != std::string::npos && token == "nOFF" ? 1 : 0;
   const auto next = offWords(rest, skip + 2);
   if (next.size() < skip + 2) return;  // not a layout this check knows: leave it to assimp
   std::string words[2];

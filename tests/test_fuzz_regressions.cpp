@@ -174,3 +174,23 @@ TEST(FuzzRegressions, OffWithoutTheKeywordHasItsCountsChecked) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(FuzzRegressions, OffFaceCountsInTheBodyAreBounded) {
+  // "#OFF\n#mo cment\n4 3\n33333333333": assimp read the last word as a
+  // count and asked for 52 GB; a number above the file's size and 2^24 is refused.
+  fftest::TempDir tmp("fuzz_off_body");
+  const std::string what =
+      replay("mesh_off", kFuzzDir / "regressions" / "mesh_off" / "face_count_in_body.off", tmp);
+  EXPECT_NE(what.find("garbled OFF file: the number at byte"), std::string::npos) << what;
+  // A cube in millimetres, integer coordinates, stays a valid mesh.
+  const fs::path cube =
+      tmp.write("mm.off",
+                "OFF\n8 12 0\n0 0 0\n1000 0 0\n1000 1000 0\n0 1000 0\n0 0 1000\n1000 0 1000\n"
+                "1000 1000 1000\n0 1000 1000\n3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n"
+                "3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n");
+  EXPECT_NO_THROW(ff::loadMesh(cube.string()));
+}
+
+}  // namespace

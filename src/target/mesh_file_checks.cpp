@@ -320,6 +320,23 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
                    shown(count[1]) + " faces but the file holds only " + std::to_string(file_size) +
                    " bytes");
   }
+  // assimp reads a face's vertex count (and, in some layouts, the counts
+  // themselves) from words further on, as the leading digits of a word, and
+  // allocates for it (a fuzzed file asked for 52 GB). A number above both the
+  // file's size and 2^24 can only be garbage there; 2^24 keeps integer
+  // coordinates (a cube in millimetres) well clear of the check.
+  if (file_size > (uintmax_t(256) << 20)) return;
+  const uintmax_t limit = std::max(file_size, uintmax_t(1) << 24);
+  const std::string all = readBytes(path, size_t(file_size));
+  for (const auto& w : offWords(all, SIZE_MAX)) {
+    size_t k = w.first + (all[w.first] == '+' ? 1 : 0);
+    uintmax_t v = 0;
+    for (; k < w.second && std::isdigit((unsigned char)all[k]) && v <= limit; ++k)
+      v = v * 10 + uintmax_t(all[k] - '0');
+    if (v > limit)
+      fail(path, "garbled OFF file: the number at byte " + std::to_string(w.first) + " is larger than " +
+                     std::to_string(limit) + ", the most a count in this file can be");
+  }
 }
 
 }  // namespace

@@ -26,7 +26,8 @@ constexpr double kGpuPhaseTol = 1e-5;
 constexpr double kExactPlacementTol = 1e-4;
 constexpr double kGpuPlacementTol = 2e-3;
 // The iou (and coverage) at the end of a run: 0.02 on PoCL, as before this
-// policy; under emulation up to 0.015 apart in 6 runs (300 steps after a target change, 500 in the default scene).
+// policy; under emulation up to 0.015 apart in 6 runs (300 steps after a target change, 500 in the default
+// scene).
 constexpr double kExactRunIouTol = 0.02;
 constexpr double kGpuRunIouTol = 0.04;
 

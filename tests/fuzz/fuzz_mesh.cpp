@@ -26,7 +26,8 @@ struct InputFile {
   std::string path;
   InputFile() {
     const char* tmp = std::getenv("TMPDIR");
-    path = std::string(tmp && *tmp ? tmp : "/tmp") + "/flowform_fuzz_" + std::to_string(::getpid()) + FF_FUZZ_EXT;
+    path = std::string(tmp && *tmp ? tmp : "/tmp") + "/flowform_fuzz_" + std::to_string(::getpid()) +
+           FF_FUZZ_EXT;
   }
   ~InputFile() { std::remove(path.c_str()); }
 };

@@ -100,6 +100,9 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
 }
 
 void OpenClBackend::setParams(const Params& params) {
+  if (params.fluid.solver != PressureSolverKind::Wcsph)
+    throw Error(std::string("params.fluid.solver: \"") + solverName(params.fluid.solver) +
+                "\" runs on the OpenMP backend only so far (use --backend cpu)");
   if (params.fluid.smoothing_radius != params_.fluid.smoothing_radius) grid_state_ = GridState::Stale;
   params_ = params;
 }

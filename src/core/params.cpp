@@ -17,7 +17,7 @@ float FluidParams::restSpacing() const {
 
 int FluidParams::substepsFor(double max_density, double max_speed) const {
   (void)max_density;  // the sound speed of p = k (rho - rho0) does not depend on density
-  const double c = std::sqrt(std::max(0.0, double(gas_constant)));
+  const double c = solver == PressureSolverKind::Wcsph ? std::sqrt(std::max(0.0, double(gas_constant))) : 0.0;
   const double dt_cfl = double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12);
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
@@ -48,21 +48,45 @@ const char* solverName(PressureSolverKind k) {
   switch (k) {
     case PressureSolverKind::Wcsph:
       return "wcsph";
+    case PressureSolverKind::Dfsph:
+      return "dfsph";
   }
   return "?";
 }
 
 PressureSolverKind solverByName(const std::string& name) {
   if (name == "wcsph") return PressureSolverKind::Wcsph;
-  throw Error("params.fluid.solver: must be \"wcsph\" (got \"" + name + "\")");
+  if (name == "dfsph") return PressureSolverKind::Dfsph;
+  throw Error("params.fluid.solver: must be \"wcsph\" or \"dfsph\" (got \"" + name + "\")");
 }
+
+namespace {
+
+// Water (docs/PRESETS.md): rho0 = 1000 and DFSPH at the paper's particle
+// spacing, so a scene has the same particle count on both presets; the
+// support is 2 spacings, as SPlisHSPlasH's cubic spline.
+Params waterParams() {
+  Params p;
+  FluidParams& f = p.fluid;
+  const float volume = f.restVolume();  // the paper's rest volume: spacing 6.3 mm
+  f.rest_density = 1000.0f;
+  f.particle_mass = f.rest_density * volume;
+  f.smoothing_radius = 2.0f * std::cbrt(volume);
+  f.solver = PressureSolverKind::Dfsph;
+  f.cfl = 0.25f;  // half a spacing per substep at the largest speed
+  return p;
+}
+
+}  // namespace
 
 Params presetParams(const std::string& name) {
   // The paper's appendix values; params.h holds them as the defaults.
   if (name == "paper") return Params{};
-  // The engine's recommended set; same as paper until measurements say otherwise.
+  // The engine's recommended set: the paper's until DFSPH holds a column at
+  // rest (docs/PRESETS.md).
   if (name == "default") return Params{};
-  throw Error("unknown parameter preset '" + name + "' (known: paper, default)");
+  if (name == "water") return waterParams();
+  throw Error("unknown parameter preset '" + name + "' (known: paper, default, water)");
 }
 
 namespace {
@@ -105,8 +129,9 @@ void validateParams(const Params& p, const std::string& where) {
                      static_cast<const float*>(f)[i]);
         break;
       case ParamInfo::Type::Solver:
-        if (*static_cast<const PressureSolverKind*>(f) != PressureSolverKind::Wcsph)
-          fail(where, info.name(), "must be \"wcsph\"");
+        if (*static_cast<const PressureSolverKind*>(f) != PressureSolverKind::Wcsph &&
+            *static_cast<const PressureSolverKind*>(f) != PressureSolverKind::Dfsph)
+          fail(where, info.name(), "must be \"wcsph\" or \"dfsph\"");
         break;
       case ParamInfo::Type::Units: {
         const ControlForceUnits u = *static_cast<const ControlForceUnits*>(f);

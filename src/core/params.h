@@ -18,6 +18,7 @@ enum class ControlForceUnits {
 // Each backend owns its implementation (src/cpu/pressure_solver.h).
 enum class PressureSolverKind {
   Wcsph,  // "wcsph": p = k (rho - rho0), Mueller et al. 2003
+  Dfsph,  // "dfsph": divergence-free SPH, Bender & Koschier 2015, 2017
 };
 const char* solverName(PressureSolverKind k);
 // The solver called `name`; throws ff::Error "params.fluid.solver: ..." for another.
@@ -34,14 +35,22 @@ struct FluidParams {
   float gravity[3] = {0.0f, -9.81f, 0.0f};
   // Stability without tuning. Each step of `time_step` is split into as many
   // equal substeps as the CFL condition dt <= cfl * h / (c + v_max) asks for,
-  // where c = sqrt(k) is the sound speed of p = k (rho - rho0) and h the
-  // smoothing radius (up to max_substeps).
+  // where c = sqrt(k) is the sound speed of p = k (rho - rho0) (0 for dfsph,
+  // which has no sound speed) and h the smoothing radius (up to max_substeps).
   float cfl = 0.4f;
   int max_substeps = 16;
   // Last safeguard: no particle moves more than this fraction of h in one
   // substep (a velocity limit).
   float max_step_fraction = 0.5f;
   PressureSolverKind solver = PressureSolverKind::Wcsph;
+  // DFSPH: each solve stops once the mean compression it leaves is at most
+  // its tolerance, after at least 2 (density) or 1 (divergence) iterations
+  // and at most max_iterations (hitting it counts in metrics solver_capped).
+  // density_tolerance is in units of rho0; divergence_tolerance is the mean
+  // compression rate times the substep, also in units of rho0.
+  float density_tolerance = 0.0005f;
+  float divergence_tolerance = 0.001f;
+  int max_iterations = 100;
 
   float restVolume() const { return particle_mass / rest_density; }
   float restSpacing() const;  // cube root of the rest volume

@@ -9,6 +9,7 @@ void CpuBackend::saveState(StateWriter& w) const {
   for (const auto* a : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz}) w.vec(*a);
   w.vec(s.id);
   w.str(solver_->name());
+  solver_->saveState(w);
   controller_.saveState(w);
   w.pod(frame_);
 }
@@ -27,6 +28,7 @@ void CpuBackend::loadState(StateReader& r) {
   const std::string solver = r.str();
   r.check(solver == solver_->name(), "it was written with the pressure solver '" + solver +
                                          "', this run uses '" + solver_->name() + "'");
+  solver_->loadState(r, n);
   controller_.loadState(r);
   const RigidFrame frame = r.pod<RigidFrame>();
   fluid_.s = std::move(s);

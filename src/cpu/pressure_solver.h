@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "core/state_io.h"
 #include "cpu/fluid_cpu.h"
 
 namespace ff {
@@ -30,6 +31,10 @@ class PressureSolver {
   // The grid phase reordered the particles by `order` (new k = old order[k]).
   virtual void reorder(const std::vector<uint32_t>& order) { (void)order; }
   virtual size_t memoryBytes() const { return 0; }
+  // The state a resumed run needs to stay bit-identical (warm starts); `n`
+  // is the fluid's particle count.
+  virtual void saveState(StateWriter& w) const { (void)w; }
+  virtual void loadState(StateReader& r, size_t n) { (void)r, (void)n; }
   SolverStats take() {
     SolverStats s = stats_;
     stats_ = SolverStats();

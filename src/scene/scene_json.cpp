@@ -188,7 +188,7 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
           try {
             *static_cast<PressureSolverKind*>(field) = solverByName(name);
           } catch (const Error&) {
-            r.fail(key, "must be \"wcsph\" (got '" + name + "')");
+            r.fail(key, "must be \"wcsph\" or \"dfsph\" (got '" + name + "')");
           }
           break;
         }

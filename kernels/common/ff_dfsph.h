@@ -1,0 +1,210 @@
+/* ff_dfsph.h - Divergence-free SPH (Bender & Koschier 2015, 2017): its kernel,
+ * its analytic wall and the per-particle bodies of its two solves, written
+ * once for the OpenMP backend and the OpenCL kernels.
+ *
+ * One kernel for everything: DFSPH is only stable when the density change it
+ * predicts is the exact time derivative of the density it corrects. So the
+ * density, its gradient, the solver's diagonal and the pressure acceleration
+ * all use the cubic spline W (Monaghan 1992, support H = the smoothing
+ * radius), and the container walls all use the gradient of one wall density
+ * share S(x) (the same closed form as in the density).
+ *
+ * Units: densities in units of rho0 (rho_hat = rho / rho0); V is the volume of
+ * a particle in the rest lattice (1 / sum over the lattice of W, so that the
+ * rest lattice has rho_hat = 1 exactly). grad W_ij = -g r_ij with
+ * r_ij = x_i - x_j and g >= 0 (ff_cubic_grad_factor).
+ *
+ *   rho_hat_i     = V sum_j W_ij + S(x_i)
+ *   d rho_hat_i/dt = -V sum_j g (u_i - u_j).r_ij + grad S(x_i).u_i   (ff_dfsph_rate)
+ *
+ * A solve looks for k_i >= 0 whose velocity change
+ *   du_i = V sum_j g (k_i + k_j) r_ij - k_i grad S(x_i)               (ff_dfsph_velocity_change)
+ * (over dt: the divergence solve applies du, the density solve du / dt)
+ * removes the compression b_i, by Jacobi relaxation on
+ *   r_i = b_i + rate(du)_i,  k_i <- max(k_i + omega alpha_i r_i, 0)
+ * with alpha_i = 1 / (|V sum_j grad W_ij + grad S_i|^2 + sum_j |V grad W_ij|^2)
+ * (ff_dfsph_factor). The wall acts as a static boundary with the particle's
+ * own k_i, in the diagonal as in du. Only compressions are corrected. */
+#ifndef FF_DFSPH_H
+#define FF_DFSPH_H
+#include "ff_compat.h"
+
+/* The cubic spline's normalisation 8 / (pi H^3); W(0) = coef. */
+FF_FN float ff_cubic_coef(float H) {
+  return 8.0f / (FF_PI * H * H * H);
+}
+
+/* W(r), r the distance, inv_h = 1 / H, k = ff_cubic_coef(H). 0 for r >= H. */
+#define FF_CUBIC_DEF(T, name)                                                     \
+  FF_FN T name(T r, float inv_h, float k) {                                       \
+    T q = r * inv_h;                                                              \
+    T a = 1.0f - q;                                                               \
+    return (q <= 0.5f ? k * (6.0f * q * q * (q - 1.0f) + 1.0f) : FF_ZERO_OF(T)) + \
+           (((q > 0.5f) & (q < 1.0f)) ? 2.0f * k * a * a * a : FF_ZERO_OF(T));    \
+  }
+FF_GENERIC(FF_CUBIC_DEF, ff_cubic)
+
+/* g of the gradient grad W_ij = -g r_ij, with kg = k / H^2:
+ * g = kg (12 - 18 q) for q <= 1/2, 6 kg (1 - q)^2 / q for 1/2 < q < 1, else 0.
+ * Finite at r = 0, where r_ij = 0 makes the gradient 0. */
+#define FF_CUBIC_GRAD_DEF(T, name)                                              \
+  FF_FN T name(T r, float inv_h, float kg) {                                    \
+    T q = r * inv_h;                                                            \
+    T a = 1.0f - q;                                                             \
+    return (q <= 0.5f ? kg * (12.0f - 18.0f * q) : FF_ZERO_OF(T)) +             \
+           (((q > 0.5f) & (q < 1.0f)) ? 6.0f * kg * a * a / q : FF_ZERO_OF(T)); \
+  }
+FF_GENERIC(FF_CUBIC_GRAD_DEF, ff_cubic_grad_factor)
+
+/* Share of the cubic kernel's mass beyond a plane at distance d,
+ * F(d) = 2 pi int_d^H W(r) r (r - d) dr (the spherical cap of each shell r),
+ * in u = d / H: F = 16 int_u^1 w(t) t (t - u) dt, w the kernel over k.
+ * F(0) = 1/2, F(H) = 0. */
+FF_FN float ff_cubic_wall_fraction(float d, float inv_h) {
+  const float u = ff_clampf(d * inv_h, 0.0f, 1.0f);
+  if (u >= 0.5f) {
+    const float s = 1.0f - u, s5 = s * s * s * s * s;
+    return 16.0f * (0.1f * s5 - s5 * s / 15.0f);
+  }
+  const float u2 = u * u, u3 = u2 * u;
+  const float p1 = u3 * u3 - 1.2f * u3 * u2 + u3 / 3.0f;        /* int_0^u w t^2 */
+  const float q1 = 1.2f * u3 * u2 - 1.5f * u2 * u2 + 0.5f * u2; /* int_0^u w t */
+  return 16.0f * ((1.0f / 32.0f - p1) - u * (7.0f / 80.0f - q1));
+}
+
+/* dF/dd = -(16 / H) int_u^1 w(t) t dt (<= 0). */
+FF_FN float ff_cubic_wall_slope(float d, float inv_h) {
+  const float u = ff_clampf(d * inv_h, 0.0f, 1.0f);
+  float iq;
+  if (u >= 0.5f) {
+    const float s = 1.0f - u, s4 = s * s * s * s;
+    iq = 0.5f * s4 - 0.4f * s4 * s;
+  } else {
+    const float u2 = u * u;
+    iq = 7.0f / 80.0f - (1.2f * u2 * u2 * u - 1.5f * u2 * u2 + 0.5f * u2);
+  }
+  return -16.0f * inv_h * iq;
+}
+
+/* The volume of a particle of the cubic lattice of `spacing`: 1 / sum over
+ * the lattice points within H of W, so that the rest lattice has rho_hat = 1
+ * exactly (the lattice sum differs from the integral of W by a few per cent). */
+FF_FN float ff_dfsph_lattice_volume(float spacing, float H) {
+  const float inv_h = 1.0f / H, k = ff_cubic_coef(H);
+  const int n = (int)(H / spacing) + 1;
+  float sum = 0.0f;
+  for (int z = -n; z <= n; ++z)
+    for (int y = -n; y <= n; ++y)
+      for (int x = -n; x <= n; ++x) {
+        const float r = spacing * FF_SQRT((float)(x * x + y * y + z * z));
+        sum += ff_cubic(r, inv_h, k);
+      }
+  return 1.0f / sum;
+}
+
+/* One wall at distance d as its layers of boundary particles (Akinci et al.
+ * 2012), spaced as the rest lattice and spread evenly over their plane: the
+ * layer at z_m = d + (m + 1/2) spacing adds (vol / spacing^2) A(z_m), where
+ * A(z) = 2 pi int_z^H W(r) r dr = -ff_cubic_wall_slope(z) is W integrated
+ * over a plane at distance z. So a particle of the rest lattice half a
+ * spacing from the wall sees the wall in place of exactly the missing layers
+ * (the continuous F(d) of ff_cubic_wall_fraction counts 3.8 % of rho0 more
+ * there). Returns the share and sets *slope to its derivative in d,
+ * (vol / spacing^2) sum_m -2 pi z_m W(z_m). */
+FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, float inv_h, float k,
+                                 float* slope) {
+  const float c = vol / (spacing * spacing);
+  const int layers = (int)(H / spacing) + 1;
+  float f = 0.0f, s = 0.0f;
+  for (int m = 0; m < layers; ++m) {
+    const float z = FF_FMAX(d, 0.0f) + ((float)m + 0.5f) * spacing;
+    if (z < H) {
+      f -= ff_cubic_wall_slope(z, inv_h);
+      s -= 2.0f * FF_PI * z * ff_cubic(z, inv_h, k);
+    }
+  }
+  *slope = c * s;
+  return c * f;
+}
+
+/* The walls' density share S = 1 - prod_w (1 - F_w) (an edge or a corner
+ * counts the region beyond two walls once) and its exact gradient
+ * dS/dx_a = sum over the two walls w of axis a of F'_w (dd_w/dx_a) prod_{o != w} (1 - F_o),
+ * dd/dx = +1 for the low wall and -1 for the high one. Walls are taken x, y, z,
+ * low then high. */
+FF_FN float ff_dfsph_wall(const float* pos, const float* lo, const float* hi, float spacing, float vol,
+                          float H, float inv_h, float* grad) {
+  const float k = ff_cubic_coef(H);
+  float side[6], slope[6];
+  for (int a = 0; a < 3; ++a) {
+    const float dlo = pos[a] - lo[a], dhi = hi[a] - pos[a];
+    float s;
+    side[2 * a] = 1.0f - ff_dfsph_wall_layers(dlo, spacing, vol, H, inv_h, k, &s);
+    slope[2 * a] = s;
+    side[2 * a + 1] = 1.0f - ff_dfsph_wall_layers(dhi, spacing, vol, H, inv_h, k, &s);
+    slope[2 * a + 1] = -s;
+  }
+  float prod = 1.0f;
+  for (int w = 0; w < 6; ++w) prod *= side[w];
+  for (int a = 0; a < 3; ++a) {
+    float others_lo = 1.0f, others_hi = 1.0f;
+    for (int w = 0; w < 6; ++w) {
+      if (w != 2 * a) others_lo *= side[w];
+      if (w != 2 * a + 1) others_hi *= side[w];
+    }
+    grad[a] = slope[2 * a] * others_lo + slope[2 * a + 1] * others_hi;
+  }
+  return 1.0f - prod;
+}
+
+/* Neighbour sums of the density phase (self included): w = sum_j W_ij,
+ * a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2. Gives rho_hat, the wall's
+ * gradient wgrad, and returns alpha_i (0 where the diagonal is below eps:
+ * nothing around to push against). */
+FF_FN float ff_dfsph_factor(const float* pos, const float* lo, const float* hi, float spacing, float H,
+                            float inv_h, float vol, float w, const float* a, float ssq, float eps,
+                            float* rho_hat, float* wgrad) {
+  const float share = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, wgrad);
+  *rho_hat = vol * w + share;
+  float d = vol * vol * ssq;
+  for (int c = 0; c < 3; ++c) {
+    const float gc = wgrad[c] - vol * a[c];
+    d += gc * gc;
+  }
+  return d > eps ? 1.0f / d : 0.0f;
+}
+
+/* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall. */
+FF_FN float ff_dfsph_rate(float rs, float vol, const float* u, const float* wgrad) {
+  return wgrad[0] * u[0] + wgrad[1] * u[1] + wgrad[2] * u[2] - vol * rs;
+}
+
+/* The velocity change of k from ks = sum_j g (k_i + k_j) r_ij and the wall. */
+FF_FN void ff_dfsph_velocity_change(const float* ks, float ki, float vol, const float* wgrad, float* du) {
+  for (int c = 0; c < 3; ++c) du[c] = vol * ks[c] - ki * wgrad[c];
+}
+
+/* The compression the density solve removes: rho_hat predicted after dt with
+ * the rate `rate` of the velocities that every other acceleration gave,
+ * clamped at rest density (expansion is left alone). */
+FF_FN float ff_dfsph_density_source(float rho_hat, float rate, float dt) {
+  return FF_FMAX(rho_hat + dt * rate, 1.0f) - 1.0f;
+}
+
+/* The compression rate the divergence solve removes: only compressing flow,
+ * and only where the support is filled (`bulk`): a particle at a free surface
+ * has too few neighbours for a meaningful divergence. */
+FF_FN float ff_dfsph_divergence_source(float rate, int bulk) {
+  return bulk ? FF_FMAX(rate, 0.0f) : 0.0f;
+}
+
+/* One relaxed Jacobi update of k_i from the source b_i and the rate of the
+ * current k's velocity change, c_i (negative where k expands); the residual,
+ * the compression k still leaves, goes to *err (>= 0). */
+FF_FN float ff_dfsph_update(float k, float b, float c, float alpha, float omega, float* err) {
+  const float r = b + c;
+  *err = FF_FMAX(r, 0.0f);
+  return FF_FMAX(k + omega * alpha * r, 0.0f);
+}
+
+#endif /* FF_DFSPH_H */

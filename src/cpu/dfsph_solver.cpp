@@ -1,0 +1,290 @@
+#include "cpu/dfsph_solver.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "cpu/lane_group.h"
+#include "ff_dfsph.h"
+
+namespace ff {
+
+using simd::f8;
+
+namespace {
+
+// Relaxation of the Jacobi updates (as SPlisHSPlasH's DFSPH): 1 overshoots
+// where a particle's neighbours push on it as hard as it pushes back.
+constexpr float kOmega = 0.5f;
+// The divergence solve runs where a particle has at least this many
+// neighbours, counting the wall's share as the neighbours of a full support
+// it stands for (SPlisHSPlasH: 20 of about 33 at H = 2 spacings).
+constexpr float kBulkShare = 0.6f;
+
+struct Kernel {
+  float h, inv_h, k, kg;
+  explicit Kernel(float support)
+      : h(support), inv_h(1.0f / support), k(ff_cubic_coef(support)), kg(k * inv_h * inv_h) {}
+};
+
+// w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2 and the count of
+// neighbours within H of the particles b .. e-1 (6 x 8 lanes).
+FF_SIMD_CLONES void factorSums(const CpuFluid& f, uint32_t b, uint32_t e, const Kernel& kr, float* out) {
+  const FluidState& s = f.s;
+  std::vector<uint32_t>& spans = threadSpans();
+  Group g;
+  loadGroup(s, b, e, kr.h, f.grid, g, spans);
+  const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
+  const float h2 = kr.h * kr.h;
+  const f8 zero = simd::splat(0.0f);
+  f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;
+  for (size_t r = 0; r < spans.size(); r += 2)
+    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
+      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+      const f8 r2 = dx * dx + dy * dy + dz * dz;
+      const f8 dist = simd::sqrt8(r2);
+      const f8 gf = ff_cubic_grad_factor(dist, kr.inv_h, kr.kg);
+      w += ff_cubic(dist, kr.inv_h, kr.k);
+      ax += gf * dx, ay += gf * dy, az += gf * dz;
+      ssq += gf * gf * r2;
+      cnt += r2 < h2 ? simd::splat(1.0f) : zero;
+    }
+  const f8 sums[6] = {w, ax, ay, az, ssq, cnt};
+  for (int q = 0; q < 6; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
+}
+
+// rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1.
+FF_SIMD_CLONES void rateSums(const CpuFluid& f, const float* ux, const float* uy, const float* uz, uint32_t b,
+                             uint32_t e, const Kernel& kr, float* out) {
+  const FluidState& s = f.s;
+  std::vector<uint32_t>& spans = threadSpans();
+  Group g;
+  loadGroup(s, b, e, kr.h, f.grid, g, spans);
+  const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
+  const f8 uxi = simd::loadN(&ux[b], g.n, 0.0f), uyi = simd::loadN(&uy[b], g.n, 0.0f),
+           uzi = simd::loadN(&uz[b], g.n, 0.0f);
+  f8 rs = simd::splat(0.0f);
+  for (size_t r = 0; r < spans.size(); r += 2)
+    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
+      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+      const f8 gf = ff_cubic_grad_factor(simd::sqrt8(dx * dx + dy * dy + dz * dz), kr.inv_h, kr.kg);
+      rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
+    }
+  simd::storeN(out, rs, g.n);
+}
+
+// ks = sum_j g (k_i + k_j) r_ij of the particles b .. e-1 (3 x 8 lanes).
+FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const float* k, uint32_t b, uint32_t e, const Kernel& kr,
+                              float* out) {
+  const FluidState& s = f.s;
+  std::vector<uint32_t>& spans = threadSpans();
+  Group g;
+  loadGroup(s, b, e, kr.h, f.grid, g, spans);
+  const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
+  const f8 ki = simd::loadN(&k[b], g.n, 0.0f);
+  const f8 zero = simd::splat(0.0f);
+  f8 kx = zero, ky = zero, kz = zero;
+  for (size_t r = 0; r < spans.size(); r += 2)
+    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
+      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+      const f8 c =
+          ff_cubic_grad_factor(simd::sqrt8(dx * dx + dy * dy + dz * dz), kr.inv_h, kr.kg) * (ki + k[j]);
+      kx += c * dx, ky += c * dy, kz += c * dz;
+    }
+  const f8 sums[3] = {kx, ky, kz};
+  for (int q = 0; q < 3; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
+}
+
+void box(const ContainerDesc& c, float* lo, float* hi) {
+  for (int d = 0; d < 3; ++d) lo[d] = c.min[d], hi[d] = c.max[d];
+}
+
+}  // namespace
+
+bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& c) {
+  const size_t n = f.size();
+  f.rho.resize(n), f.p.resize(n);
+  for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_}) a->resize(n);
+  bulk_.resize(n);
+  if (kd_.size() != n) kd_.assign(n, 0.0f), kv_.assign(n, 0.0f);
+  const Kernel kr(p.smoothing_radius);
+  if (vol_spacing_ != p.restSpacing() || vol_h_ != kr.h) {
+    vol_spacing_ = p.restSpacing(), vol_h_ = kr.h;
+    vol_ = ff_dfsph_lattice_volume(vol_spacing_, kr.h);
+  }
+  // The neighbours of a full support in the rest lattice.
+  const float full = 4.18879f * kr.h * kr.h * kr.h / vol_;
+  const float eps = 1e-6f * kr.inv_h * kr.inv_h;
+  const float rho0 = p.rest_density, vol = vol_;
+  float lo[3], hi[3];
+  box(c, lo, hi);
+  const FluidState& s = f.s;
+  const long groups = long(f.groups.size() / 2);
+  int bad = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
+  for (long gi = 0; gi < groups; ++gi) {
+    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+    float sums[48];
+    factorSums(f, b, e, kr, sums);
+    for (uint32_t i = b; i < e; ++i) {
+      const size_t l = i - b;
+      const float pos[3] = {s.x[i], s.y[i], s.z[i]}, a[3] = {sums[8 + l], sums[16 + l], sums[24 + l]};
+      float rho_hat, wg[3];
+      alpha_[i] = ff_dfsph_factor(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a, sums[32 + l],
+                                  eps, &rho_hat, wg);
+      wgx_[i] = wg[0], wgy_[i] = wg[1], wgz_[i] = wg[2];
+      f.rho[i] = rho0 * rho_hat;
+      const float share = rho_hat - vol * sums[l];  // the walls' share
+      bulk_[i] = sums[40 + l] + share * full >= kBulkShare * full;
+      bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
+    }
+  }
+  return !bad;
+}
+
+void DfsphSolver::rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz) {
+  const Kernel kr(vol_h_);
+  const long groups = long(f.groups.size() / 2);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long gi = 0; gi < groups; ++gi) {
+    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+    float rs[8];
+    rateSums(f, vx, vy, vz, b, e, kr, rs);
+    for (uint32_t i = b; i < e; ++i) {
+      const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
+      rate_[i] = ff_dfsph_rate(rs[i - b], vol_, u, wg);
+    }
+  }
+}
+
+void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k) {
+  const Kernel kr(vol_h_);
+  const long groups = long(f.groups.size() / 2);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long gi = 0; gi < groups; ++gi) {
+    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+    float ks[24];
+    kappaSums(f, k.data(), b, e, kr, ks);
+    for (uint32_t i = b; i < e; ++i) {
+      const size_t l = i - b;
+      const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
+      float du[3];
+      ff_dfsph_velocity_change(sum, k[i], vol_, wg, du);
+      dux_[i] = du[0], duy_[i] = du[1], duz_[i] = du[2];
+    }
+  }
+}
+
+int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, float scale, double tol, int min_iterations,
+                         std::vector<float>& k) {
+  const long n = long(f.size());
+  int it = 0;
+  for (;;) {
+    // The rate of rho_hat that the current k's velocity change adds, the
+    // residual, and the relaxed update of k.
+    velocityChange(f, k);
+    rates(f, dux_.data(), duy_.data(), duz_.data());
+    double err = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : err)
+    for (long i = 0; i < n; ++i) {
+      float e;
+      k[size_t(i)] =
+          ff_dfsph_update(k[size_t(i)], b_[size_t(i)], rate_[size_t(i)], alpha_[size_t(i)], kOmega, &e);
+      err += double(e);
+    }
+    ++it;
+    if (it >= min_iterations && err / double(n) <= tol) break;
+    if (it >= p.max_iterations) {
+      ++stats_.capped;
+      break;
+    }
+  }
+  stats_.iterations += it;
+  // Apply the solved k.
+  velocityChange(f, k);
+  const float inv = 1.0f / scale;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    ux_[q] += dux_[q] * inv, uy_[q] += duy_[q] * inv, uz_[q] += duz_[q] * inv;
+  }
+  return it;
+}
+
+bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& c, float dt) {
+  (void)c;  // the walls are in the gradients of computeDensity
+  const long n = long(f.size());
+  if (alpha_.size() != size_t(n)) throw Error("dfsph: the pressure phase ran before the density phase");
+  if (n == 0) return true;
+  FluidState& s = f.s;
+  for (auto* a : {&b_, &rate_, &dux_, &duy_, &duz_}) a->resize(size_t(n));
+  ux_ = s.vx, uy_ = s.vy, uz_ = s.vz;
+  // Divergence-free solve on the velocities of the last substep.
+  rates(f, ux_.data(), uy_.data(), uz_.data());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    b_[q] = ff_dfsph_divergence_source(rate_[q], bulk_[q]);
+    kv_[q] *= 0.5f;
+  }
+  last_div_ = iterate(f, p, 1.0f, double(p.divergence_tolerance) / double(dt), 1, kv_);
+  // Every other acceleration of the substep, then the constant-density solve.
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    ux_[q] += dt * f.ax[q], uy_[q] += dt * f.ay[q], uz_[q] += dt * f.az[q];
+  }
+  rates(f, ux_.data(), uy_.data(), uz_.data());
+  const float rho0 = p.rest_density;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    b_[q] = ff_dfsph_density_source(f.rho[q] / rho0, rate_[q], dt);
+    kd_[q] = b_[q] > 0.0f ? 0.5f * kd_[q] : 0.0f;
+  }
+  last_dens_ = iterate(f, p, dt, double(p.density_tolerance), 2, kd_);
+  // The accelerations that take v to the solved velocities, and the pressure
+  // p = rho0 (kd / dt^2 + kv / dt) of both solves.
+  const float inv_dt = 1.0f / dt;
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad)
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    f.ax[q] = (ux_[q] - s.vx[q]) * inv_dt, f.ay[q] = (uy_[q] - s.vy[q]) * inv_dt,
+    f.az[q] = (uz_[q] - s.vz[q]) * inv_dt;
+    f.p[q] = rho0 * (kd_[q] * inv_dt + kv_[q]) * inv_dt;
+    bad |= std::isfinite(f.ax[q]) && std::isfinite(f.ay[q]) && std::isfinite(f.az[q]) && std::isfinite(f.p[q])
+               ? 0
+               : 1;
+  }
+  return !bad;
+}
+
+void DfsphSolver::reorder(const std::vector<uint32_t>& order) {
+  if (kd_.size() != order.size()) return;  // sized at the next density phase
+  permute(kd_, order, scratch_);
+  permute(kv_, order, scratch_);
+}
+
+void DfsphSolver::saveState(StateWriter& w) const {
+  w.vec(kd_);
+  w.vec(kv_);
+}
+
+void DfsphSolver::loadState(StateReader& r, size_t n) {
+  std::vector<float> kd, kv;
+  r.vec(kd);
+  r.vec(kv);
+  r.check((kd.empty() || kd.size() == n) && kd.size() == kv.size(),
+          "its DFSPH state does not match its " + std::to_string(n) + " fluid particles");
+  kd_ = std::move(kd), kv_ = std::move(kv);
+}
+
+size_t DfsphSolver::memoryBytes() const {
+  size_t floats = 0;
+  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &kd_, &kv_, &b_, &rate_, &dux_, &duy_, &duz_, &ux_,
+                        &uy_, &uz_, &scratch_})
+    floats += v->capacity();
+  return floats * sizeof(float) + bulk_.capacity();
+}
+
+}  // namespace ff

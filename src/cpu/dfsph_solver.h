@@ -1,0 +1,49 @@
+// dfsph_solver.h - DFSPH (Bender & Koschier 2015, 2017) on the OpenMP
+// backend. Phase "density": rho with the cubic spline and the analytic wall,
+// and each particle's factor alpha. Phase "pressure", per substep: a
+// divergence-free solve on the velocities, then, with every other
+// acceleration of the substep applied, a constant-density solve. Both are
+// relaxed Jacobi iterations warm-started from half of the last substep's
+// values. The formulas and per-particle bodies are ff_dfsph.h's.
+#pragma once
+#include <vector>
+
+#include "cpu/pressure_solver.h"
+
+namespace ff {
+
+class DfsphSolver : public PressureSolver {
+ public:
+  std::string name() const override { return "dfsph"; }
+  bool computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) override;
+  bool solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) override;
+  void reorder(const std::vector<uint32_t>& order) override;
+  size_t memoryBytes() const override;
+  void saveState(StateWriter& w) const override;
+  void loadState(StateReader& r, size_t n) override;
+
+  // For tests: the last substep's iterations of each solve.
+  int lastDivergenceIterations() const { return last_div_; }
+  int lastDensityIterations() const { return last_dens_; }
+
+ private:
+  // One solve on the velocities u_: the source b_ is set; k holds the warm
+  // start. `scale` divides the velocity change (1 for the divergence solve,
+  // dt for the density solve). Returns the iterations.
+  int iterate(const CpuFluid& f, const FluidParams& p, float scale, double tol, int min_iterations,
+              std::vector<float>& k);
+  // du_ = the velocity change of k (before the division by `scale`).
+  void velocityChange(const CpuFluid& f, const std::vector<float>& k);
+  // rate_ = the rate of rho_hat of the velocities (vx, vy, vz).
+  void rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz);
+
+  float vol_ = 0.0f;                            // the lattice volume V (ff_dfsph_lattice_volume)
+  float vol_spacing_ = 0.0f, vol_h_ = 0.0f;     // what vol_ was computed for
+  std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
+  std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
+  std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
+  std::vector<float> b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
+  int last_div_ = 0, last_dens_ = 0;
+};
+
+}  // namespace ff

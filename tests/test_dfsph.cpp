@@ -1,0 +1,154 @@
+// DFSPH on the OpenMP backend (src/cpu/dfsph_solver.cpp, kernels/common/ff_dfsph.h):
+// the cubic spline and its wall against quadrature and finite differences, and
+// the rest lattice in a closed box.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cpu/backend_cpu.h"
+#include "ff_dfsph.h"
+#include "sim/simulation.h"
+
+namespace {
+
+// W(r) of the cubic spline by its textbook definition (Monaghan 1992), for
+// the quadratures: sigma = 8 / (pi H^3), q = r / H.
+double cubicW(double r, double H) {
+  const double q = r / H, s = 8.0 / (M_PI * H * H * H);
+  if (q <= 0.5) return s * (6.0 * q * q * q - 6.0 * q * q + 1.0);
+  if (q < 1.0) return s * 2.0 * std::pow(1.0 - q, 3);
+  return 0.0;
+}
+
+// The kernel's mass beyond a plane at distance d, by brute-force quadrature
+// over the half-space z > d (cylindrical shells).
+double wallMassQuadrature(double d, double H) {
+  const int nz = 400, nr = 400;
+  double sum = 0.0;
+  for (int iz = 0; iz < nz; ++iz) {
+    const double z = d + (H - d) * (iz + 0.5) / nz;
+    for (int ir = 0; ir < nr; ++ir) {
+      const double rho = H * (ir + 0.5) / nr;
+      sum += cubicW(std::sqrt(z * z + rho * rho), H) * 2.0 * M_PI * rho * (H / nr) * ((H - d) / nz);
+    }
+  }
+  return sum;
+}
+
+TEST(DfsphKernel, CubicSplineIsNormalisedAndItsGradientIsTheDerivative) {
+  const float H = 0.0126f, inv_h = 1.0f / H, k = ff_cubic_coef(H), kg = k * inv_h * inv_h;
+  double mass = 0.0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    const double r = H * (i + 0.5) / n;
+    mass += 4.0 * M_PI * r * r * ff_cubic(float(r), inv_h, k) * H / n;
+    EXPECT_NEAR(ff_cubic(float(r), inv_h, k), cubicW(r, H), 1e-5 * cubicW(0.0, H));
+  }
+  EXPECT_NEAR(mass, 1.0, 1e-4);
+  for (double q : {0.1, 0.3, 0.49, 0.51, 0.7, 0.95}) {
+    const double r = q * H, e = 1e-4 * H;
+    const double slope = (cubicW(r + e, H) - cubicW(r - e, H)) / (2.0 * e);
+    EXPECT_NEAR(ff_cubic_grad_factor(float(r), inv_h, kg), -slope / r, 1e-3 * std::fabs(slope / r)) << q;
+  }
+  EXPECT_EQ(ff_cubic(H, inv_h, k), 0.0f);
+  EXPECT_EQ(ff_cubic_grad_factor(H, inv_h, kg), 0.0f);
+}
+
+TEST(DfsphKernel, WallFractionMatchesQuadratureAndSlopeItsDerivative) {
+  const float H = 0.0126f, inv_h = 1.0f / H;
+  EXPECT_NEAR(ff_cubic_wall_fraction(0.0f, inv_h), 0.5f, 1e-6f);
+  EXPECT_EQ(ff_cubic_wall_fraction(H, inv_h), 0.0f);
+  for (double q : {0.0, 0.1, 0.25, 0.45, 0.5, 0.55, 0.8, 0.97}) {
+    const double d = q * H;
+    EXPECT_NEAR(ff_cubic_wall_fraction(float(d), inv_h), wallMassQuadrature(d, H), 2e-4) << q;
+    const double e = 1e-3 * H;
+    const double fd = (wallMassQuadrature(d + e, H) - wallMassQuadrature(std::max(0.0, d - e), H)) /
+                      (d + e - std::max(0.0, d - e));
+    EXPECT_NEAR(ff_cubic_wall_slope(float(d), inv_h), fd, 2e-3 * std::fabs(ff_cubic_wall_slope(0.0f, inv_h)))
+        << q;
+  }
+}
+
+TEST(DfsphKernel, WallGradientIsTheGradientOfTheWallShareInACorner) {
+  const float H = 0.0126f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
+  const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {0.1f, 0.1f, 0.1f};
+  const float points[3][3] = {{0.002f, 0.003f, 0.05f}, {0.004f, 0.097f, 0.006f}, {0.05f, 0.05f, 0.0935f}};
+  for (const float* pos : points) {
+    float grad[3], unused[3];
+    ff_dfsph_wall(pos, lo, hi, sp, vol, H, inv_h, grad);
+    for (int a = 0; a < 3; ++a) {
+      const float e = 1e-4f;
+      float p1[3] = {pos[0], pos[1], pos[2]}, p0[3] = {pos[0], pos[1], pos[2]};
+      p1[a] += e, p0[a] -= e;
+      const double fd = (double(ff_dfsph_wall(p1, lo, hi, sp, vol, H, inv_h, unused)) -
+                         double(ff_dfsph_wall(p0, lo, hi, sp, vol, H, inv_h, unused))) /
+                        (2.0 * e);
+      EXPECT_NEAR(grad[a], fd, 0.01 * std::fabs(ff_cubic_wall_slope(0.0f, inv_h))) << a;
+    }
+  }
+}
+
+// A block of nx x ny x nz particles at the rest spacing in the corner of a
+// box of bx x by x bz spacings.
+ff::SceneDesc blockScene(const ff::Params& p, int nx, int ny, int nz, float bx, float by, float bz) {
+  ff::SceneDesc s;
+  s.source = "test";
+  s.preset = "water";
+  s.params = p;
+  const float sp = p.fluid.restSpacing();
+  s.container.min = ff::Vec3(0, 0, 0);
+  s.container.max = ff::Vec3(bx * sp, by * sp, bz * sp);
+  ff::FluidBlockDesc b;
+  b.origin = ff::Vec3(0, 0, 0);
+  b.dims[0] = nx, b.dims[1] = ny, b.dims[2] = nz;
+  s.fluid.push_back(b);
+  return s;
+}
+
+TEST(Dfsph, RestLatticeHasRestDensityAtTheWallsWithoutGravity) {
+  ff::Params p = ff::presetParams("water");
+  p.fluid.gravity[1] = 0.0f;
+  const int n = 8;
+  const ff::SceneDesc s = blockScene(p, n, n, n, n, n, n);
+  auto backend = std::make_unique<ff::CpuBackend>(2);
+  ff::CpuBackend* cpu = backend.get();
+  ff::Simulation sim(s, std::move(backend));
+  sim.step();
+  const auto& f = cpu->fluid();
+  const float rho0 = p.fluid.rest_density;
+  double worst = 0.0;
+  for (size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::fabs(f.rho[i] / rho0 - 1.0));
+  // The box is filled: every particle, at a face, an edge or a corner, has
+  // the walls in place of the missing fluid.
+  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(sim.metrics().max_speed, 1e-3);
+  EXPECT_EQ(sim.metrics().solver_capped, 0);
+}
+
+TEST(Dfsph, ChosenByNameOnTheOpenMpBackend) {
+  EXPECT_EQ(ff::solverByName("dfsph"), ff::PressureSolverKind::Dfsph);
+  EXPECT_STREQ(ff::solverName(ff::PressureSolverKind::Dfsph), "dfsph");
+  ff::Params p = ff::presetParams("water");
+  EXPECT_EQ(p.fluid.solver, ff::PressureSolverKind::Dfsph);
+  EXPECT_FLOAT_EQ(p.fluid.rest_density, 1000.0f);
+  // The paper's particle spacing, so a scene has the same particles on both presets.
+  EXPECT_NEAR(p.fluid.restSpacing(), ff::presetParams("paper").fluid.restSpacing(), 1e-7f);
+  EXPECT_NO_THROW(ff::validateParams(p, "water"));
+  ff::CpuBackend cpu(2);
+  cpu.init(p, blockScene(p, 2, 2, 2, 4, 4, 4).container, ff::FluidState());
+  EXPECT_EQ(cpu.solver().name(), "dfsph");
+  p.fluid.density_tolerance = 0.0f;
+  try {
+    ff::validateParams(p, "scene.json");
+    ADD_FAILURE() << "no error";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("params.fluid.density_tolerance"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

@@ -13,6 +13,7 @@
 #include "cpu/backend_cpu.h"
 #include "ff_dfsph.h"
 #include "sim/simulation.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -94,19 +95,12 @@ TEST(DfsphKernel, WallGradientIsTheGradientOfTheWallShareInACorner) {
 }
 
 // A block of nx x ny x nz particles at the rest spacing in the corner of a
-// box of bx x by x bz spacings.
+// box of bx x by x bz spacings, on `p`.
 ff::SceneDesc blockScene(const ff::Params& p, int nx, int ny, int nz, float bx, float by, float bz) {
-  ff::SceneDesc s;
-  s.source = "test";
+  const float sp = p.fluid.restSpacing();
+  ff::SceneDesc s = fftest::blockScene(ff::Vec3(bx * sp, by * sp, bz * sp), ff::Vec3(0, 0, 0), nx, ny, nz);
   s.preset = "water";
   s.params = p;
-  const float sp = p.fluid.restSpacing();
-  s.container.min = ff::Vec3(0, 0, 0);
-  s.container.max = ff::Vec3(bx * sp, by * sp, bz * sp);
-  ff::FluidBlockDesc b;
-  b.origin = ff::Vec3(0, 0, 0);
-  b.dims[0] = nx, b.dims[1] = ny, b.dims[2] = nz;
-  s.fluid.push_back(b);
   return s;
 }
 

@@ -20,10 +20,13 @@
  * A solve looks for k_i >= 0 whose velocity change
  *   du_i = V sum_j g (k_i + k_j) r_ij - k_i grad S(x_i)               (ff_dfsph_velocity_change)
  * (over dt: the divergence solve applies du, the density solve du / dt)
- * removes the compression b_i, by Jacobi relaxation on
- *   r_i = b_i + rate(du)_i,  k_i <- max(k_i + omega alpha_i r_i, 0)
- * with alpha_i = 1 / (|V sum_j grad W_ij + grad S_i|^2 + sum_j |V grad W_ij|^2)
- * (ff_dfsph_factor). The wall acts as a static boundary with the particle's
+ * removes the compression b_i >= 0 that the velocities still cause. As
+ * SPlisHSPlasH's DFSPH it iterates Jacobi increments dk_i = alpha_i b_i >= 0
+ * (ff_dfsph_increment), applies each increment's velocity change at once and
+ * recomputes b from the new velocities, so the stopping test measures what the
+ * velocities will do; alpha_i = 1 / (|V sum_j grad W_ij + grad S_i|^2 +
+ * sum_j |V grad W_ij|^2) (ff_dfsph_factor). The wall acts as a static boundary
+ * with the particle's
  * own k_i, in the diagonal as in du. Only compressions are corrected. */
 #ifndef FF_DFSPH_H
 #define FF_DFSPH_H
@@ -198,13 +201,17 @@ FF_FN float ff_dfsph_divergence_source(float rate, int bulk) {
   return bulk ? FF_FMAX(rate, 0.0f) : 0.0f;
 }
 
-/* One relaxed Jacobi update of k_i from the source b_i and the rate of the
- * current k's velocity change, c_i (negative where k expands); the residual,
- * the compression k still leaves, goes to *err (>= 0). */
-FF_FN float ff_dfsph_update(float k, float b, float c, float alpha, float omega, float* err) {
-  const float r = b + c;
-  *err = FF_FMAX(r, 0.0f);
-  return FF_FMAX(k + omega * alpha * r, 0.0f);
+/* The warm start of a solve: `warm` times the last substep's k where the
+ * particle compresses (b > 0), else 0. */
+FF_FN float ff_dfsph_warm_start(float k, float b, float warm) {
+  return b > 0.0f ? warm * k : 0.0f;
+}
+
+/* One Jacobi increment of k (Bender & Koschier 2017, as SPlisHSPlasH): the k
+ * that would remove the particle's remaining compression b >= 0 if its
+ * neighbours stood still. Never negative, as b is clamped. */
+FF_FN float ff_dfsph_increment(float b, float alpha) {
+  return b * alpha;
 }
 
 #endif /* FF_DFSPH_H */

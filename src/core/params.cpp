@@ -73,7 +73,7 @@ Params waterParams() {
   f.particle_mass = f.rest_density * volume;
   f.smoothing_radius = 2.0f * std::cbrt(volume);
   f.solver = PressureSolverKind::Dfsph;
-  f.cfl = 0.25f;  // half a spacing per substep at the largest speed
+  f.cfl = 0.1f;  // a fifth of a spacing per substep at the largest speed (docs/PRESETS.md)
   return p;
 }
 

@@ -12,9 +12,11 @@ using simd::f8;
 
 namespace {
 
-// Relaxation of the Jacobi updates (as SPlisHSPlasH's DFSPH): 1 overshoots
-// where a particle's neighbours push on it as hard as it pushes back.
-constexpr float kOmega = 0.5f;
+// Share of the last substep's k that starts a solve, where the particle
+// compresses again (SPlisHSPlasH's DFSPH: 1/2). Measured on a 10 x 30 x 10
+// column (docs/PRESETS.md): a full warm start overshoots after a transient
+// (the increments never take k back) and the column blows apart.
+constexpr float kWarmStart = 0.5f;
 // The divergence solve runs where a particle has at least this many
 // neighbours, counting the wall's share as the neighbours of a full support
 // it stands for (SPlisHSPlasH: 20 of about 33 at H = 2 spacings).
@@ -174,39 +176,62 @@ void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k)
   }
 }
 
-int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, float scale, double tol, int min_iterations,
-                         std::vector<float>& k) {
+double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   const long n = long(f.size());
-  int it = 0;
-  for (;;) {
-    // The rate of rho_hat that the current k's velocity change adds, the
-    // residual, and the relaxed update of k.
-    velocityChange(f, k);
-    rates(f, dux_.data(), duy_.data(), duz_.data());
-    double err = 0.0;
+  rates(f, ux_.data(), uy_.data(), uz_.data());
+  const float inv_rho0 = 1.0f / rho0_;
+  double err = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : err)
-    for (long i = 0; i < n; ++i) {
-      float e;
-      k[size_t(i)] =
-          ff_dfsph_update(k[size_t(i)], b_[size_t(i)], rate_[size_t(i)], alpha_[size_t(i)], kOmega, &e);
-      err += double(e);
-    }
-    ++it;
-    if (it >= min_iterations && err / double(n) <= tol) break;
-    if (it >= p.max_iterations) {
-      ++stats_.capped;
-      break;
-    }
+  for (long i = 0; i < n; ++i) {
+    const size_t q = size_t(i);
+    b_[q] = density ? ff_dfsph_density_source(f.rho[q] * inv_rho0, rate_[q], dt)
+                    : ff_dfsph_divergence_source(rate_[q], bulk_[q]);
+    err += double(b_[q]);
   }
-  stats_.iterations += it;
-  // Apply the solved k.
+  return n ? err / double(n) : 0.0;
+}
+
+void DfsphSolver::applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale) {
   velocityChange(f, k);
+  const long n = long(f.size());
   const float inv = 1.0f / scale;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const size_t q = size_t(i);
     ux_[q] += dux_[q] * inv, uy_[q] += duy_[q] * inv, uz_[q] += duz_[q] * inv;
   }
+}
+
+int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol,
+                         int min_iterations, float warm, std::vector<float>& k) {
+  const long n = long(f.size());
+  const float scale = density ? dt : 1.0f;
+  double err = sources(f, density, dt);
+  // Warm start: the last substep's k where this one compresses too.
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) k[size_t(i)] = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
+  applyVelocityChange(f, k, scale);
+  err = sources(f, density, dt);
+  int it = 0;
+  for (;;) {
+    if (it >= min_iterations && err <= tol) break;
+    if (it >= p.max_iterations) {
+      ++stats_.capped;
+      break;
+    }
+    // One Jacobi iteration: the increment that removes each particle's
+    // remaining compression on its own, applied to the velocities.
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) {
+      const size_t q = size_t(i);
+      inc_[q] = ff_dfsph_increment(b_[q], alpha_[q]);
+      k[q] += inc_[q];
+    }
+    applyVelocityChange(f, inc_, scale);
+    err = sources(f, density, dt);
+    ++it;
+  }
+  stats_.iterations += it;
   return it;
 }
 
@@ -216,35 +241,25 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   if (alpha_.size() != size_t(n)) throw Error("dfsph: the pressure phase ran before the density phase");
   if (n == 0) return true;
   FluidState& s = f.s;
-  for (auto* a : {&b_, &rate_, &dux_, &duy_, &duz_}) a->resize(size_t(n));
+  for (auto* a : {&b_, &rate_, &dux_, &duy_, &duz_, &inc_}) a->resize(size_t(n));
+  rho0_ = p.rest_density;
   ux_ = s.vx, uy_ = s.vy, uz_ = s.vz;
+  // k scales as the pressure times dt^2 (density) or dt (divergence).
+  const float ratio = last_dt_ > 0.0f ? dt / last_dt_ : 1.0f;
+  last_dt_ = dt;
   // Divergence-free solve on the velocities of the last substep.
-  rates(f, ux_.data(), uy_.data(), uz_.data());
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    const size_t q = size_t(i);
-    b_[q] = ff_dfsph_divergence_source(rate_[q], bulk_[q]);
-    kv_[q] *= 0.5f;
-  }
-  last_div_ = iterate(f, p, 1.0f, double(p.divergence_tolerance) / double(dt), 1, kv_);
+  last_div_ =
+      iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, kv_);
   // Every other acceleration of the substep, then the constant-density solve.
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const size_t q = size_t(i);
     ux_[q] += dt * f.ax[q], uy_[q] += dt * f.ay[q], uz_[q] += dt * f.az[q];
   }
-  rates(f, ux_.data(), uy_.data(), uz_.data());
-  const float rho0 = p.rest_density;
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    const size_t q = size_t(i);
-    b_[q] = ff_dfsph_density_source(f.rho[q] / rho0, rate_[q], dt);
-    kd_[q] = b_[q] > 0.0f ? 0.5f * kd_[q] : 0.0f;
-  }
-  last_dens_ = iterate(f, p, dt, double(p.density_tolerance), 2, kd_);
+  last_dens_ = iterate(f, p, true, dt, double(p.density_tolerance), 2, kWarmStart * ratio * ratio, kd_);
   // The accelerations that take v to the solved velocities, and the pressure
   // p = rho0 (kd / dt^2 + kv / dt) of both solves.
-  const float inv_dt = 1.0f / dt;
+  const float inv_dt = 1.0f / dt, rho0 = rho0_;
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad)
   for (long i = 0; i < n; ++i) {

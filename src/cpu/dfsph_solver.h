@@ -27,11 +27,18 @@ class DfsphSolver : public PressureSolver {
   int lastDensityIterations() const { return last_dens_; }
 
  private:
-  // One solve on the velocities u_: the source b_ is set; k holds the warm
-  // start. `scale` divides the velocity change (1 for the divergence solve,
-  // dt for the density solve). Returns the iterations.
-  int iterate(const CpuFluid& f, const FluidParams& p, float scale, double tol, int min_iterations,
-              std::vector<float>& k);
+  // One solve on the velocities u_ (density: the constant-density solve over
+  // dt, else the divergence-free solve): warm-started from `warm` times k
+  // where the particle compresses, then Jacobi increments until the mean
+  // remaining compression (b_) is at most tol. k ends as the total. Returns
+  // the iterations.
+  int iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol, int min_iterations,
+              float warm, std::vector<float>& k);
+  // b_ = each particle's compression (rate) that the velocities u_ still
+  // cause; returns its mean.
+  double sources(const CpuFluid& f, bool density, float dt);
+  // u_ += the velocity change of k, over `scale`.
+  void applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale);
   // du_ = the velocity change of k (before the division by `scale`).
   void velocityChange(const CpuFluid& f, const std::vector<float>& k);
   // rate_ = the rate of rho_hat of the velocities (vx, vy, vz).
@@ -42,8 +49,9 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
-  std::vector<float> b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
+  std::vector<float> inc_, b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;
+  float last_dt_ = 0.0f, rho0_ = 1.0f;
 };
 
 }  // namespace ff

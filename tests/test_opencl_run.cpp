@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "cpu/backend_cpu.h"
@@ -64,6 +65,29 @@ bool finite(const ff::StepMetrics& m) {
          std::isfinite(m.density_error) && std::isfinite(m.kinetic_energy);
 }
 
+// Absolute checks of a run's state, independent of the other backend: every
+// particle of the scene is still there exactly once (ids a permutation: mass
+// is conserved), finite, and inside the container.
+void expectPhysicalState(ff::Simulation& sim, const char* what) {
+  ff::FluidState f;
+  sim.backend().readFluid(f);
+  const ff::SceneDesc& scene = sim.scene();
+  ASSERT_EQ(f.size(), size_t(scene.fluidCount())) << what;
+  std::vector<char> seen(f.size(), 0);
+  size_t outside = 0, bad_ids = 0;
+  const ff::Vec3 lo = scene.container.min, hi = scene.container.max;
+  for (size_t i = 0; i < f.size(); ++i) {
+    const float p[3] = {f.x[i], f.y[i], f.z[i]}, v[3] = {f.vx[i], f.vy[i], f.vz[i]};
+    for (int d = 0; d < 3; ++d) {
+      ASSERT_TRUE(std::isfinite(p[d]) && std::isfinite(v[d])) << what << ", particle " << i;
+      outside += p[d] < lo[d] || p[d] > hi[d];
+    }
+    if (f.id[i] >= f.size() || seen[f.id[i]]++) ++bad_ids;
+  }
+  EXPECT_EQ(outside, 0u) << what << ": coordinates outside the container";
+  EXPECT_EQ(bad_ids, 0u) << what << ": particle ids lost or repeated";
+}
+
 TEST(OpenClRun, DefaultSceneEndsAtTheCpuBackendsIou) {
   auto backend = openCl();
   ASSERT_TRUE(backend);
@@ -82,6 +106,8 @@ TEST(OpenClRun, DefaultSceneEndsAtTheCpuBackendsIou) {
   }
   EXPECT_EQ(ocl.target()->label, "sphere");
   EXPECT_GT(cpu.metrics().iou, 0.5);  // the sphere has formed: the comparison means something
+  EXPECT_GT(ocl.metrics().iou, 0.5);  // and on OpenCL, on its own
+  expectPhysicalState(ocl, "opencl, step 500");
   EXPECT_NEAR(ocl.metrics().iou, cpu.metrics().iou, runIouTol(ocl.backend()));
   EXPECT_NEAR(ocl.metrics().coverage, cpu.metrics().coverage, runIouTol(ocl.backend()));
   // The schedule switches to the torus at 2 s, at the start of step 501.
@@ -139,6 +165,7 @@ TEST(OpenClRun, TargetChangesMidRunOnBothBackends) {
                   cpu.metrics().kinetic_energy, ocl.metrics().kinetic_energy);
   }
   EXPECT_GT(ocl.metrics().iou, iou_at_change + 0.1);  // the torus is forming out of the sphere
+  expectPhysicalState(ocl, "opencl, step 400");
   EXPECT_NEAR(ocl.metrics().iou, cpu.metrics().iou, runIouTol(ocl.backend()));
   // Switching control off and on again.
   ocl.clearTarget();

@@ -52,6 +52,9 @@ int runScene(const RunOptions& o) {
   std::string note;
   auto backend = makeBackend(o.backend, o.device, o.threads, &note);
   if (!note.empty()) std::printf("flowform: %s\n", note.c_str());
+  if (o.checkpoint_every > 0.0 && !backend->writesCheckpoints())
+    throw Error("--checkpoint-every: the " + backend->name() +
+                " backend cannot write checkpoints; run with --backend cpu");
   std::unique_ptr<Simulation> simp =
       o.resume.empty() ? std::make_unique<Simulation>(o.scene.empty() ? defaultScene() : loadScene(o.scene),
                                                       std::move(backend))
@@ -96,6 +99,7 @@ int runScene(const RunOptions& o) {
   auto t0 = std::chrono::steady_clock::now();
   if (exporter) exportFrameIfDue(sim, *exporter);
   Progress progress("  run", steps, dt, sim.time());
+  const bool can_checkpoint = sim.backend().writesCheckpoints();
   Checkpoints checkpoints(o.checkpoint_dir, o.checkpoint_every, sim.time());
   StopSignals stop;
   sim.setProfiling(o.profile);
@@ -125,13 +129,20 @@ int runScene(const RunOptions& o) {
       std::printf("  checkpoint %s (t = %.3f s)\n", saved.c_str(), sim.time());
     }
     if (stop.caught() && s + 1 < end) {
-      const std::string last = saved.empty() ? checkpoints.write(sim) : saved;
+      const char* signal_name = stop.caught() == SIGINT ? "SIGINT" : "SIGTERM";
       progress.interrupt();
+      if (!can_checkpoint) {
+        std::printf(
+            "flowform: stopped by %s at step %ld (t = %.3f s); no checkpoint: the %s backend cannot "
+            "write checkpoints (--backend cpu can)\n",
+            signal_name, sim.stepCount(), sim.time(), sim.backend().name().c_str());
+        return 128 + stop.caught();
+      }
+      const std::string last = saved.empty() ? checkpoints.write(sim) : saved;
       std::printf(
           "flowform: stopped by %s at step %ld (t = %.3f s); checkpoint %s\n"
           "  resume with: flowform run --resume %s\n",
-          stop.caught() == SIGINT ? "SIGINT" : "SIGTERM", sim.stepCount(), sim.time(), last.c_str(),
-          last.c_str());
+          signal_name, sim.stepCount(), sim.time(), last.c_str(), last.c_str());
       return 128 + stop.caught();
     }
   }

@@ -37,6 +37,7 @@ class CpuBackend : public Backend {
 
   void saveState(StateWriter& w) const override;
   void loadState(StateReader& r) override;
+  bool writesCheckpoints() const override { return true; }
 
   void readFluid(FluidState& out) override { out = fluid_.s; }
   void readDensity(std::vector<float>& rho, std::vector<float>& p) override {

@@ -94,6 +94,9 @@ class Backend {
   // default refuses with a clear ff::Error (a backend that cannot yet).
   virtual void saveState(StateWriter& w) const;
   virtual void loadState(StateReader& r);
+  // Whether saveState() works (false: it throws), so that a run can say so
+  // before it starts rather than at its first checkpoint or at SIGTERM.
+  virtual bool writesCheckpoints() const { return false; }
 
   // Copies of the state, in the backend's current (cell-sorted) order.
   virtual void readFluid(FluidState& out) = 0;

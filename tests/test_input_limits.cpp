@@ -119,6 +119,10 @@ TEST(InputLimits, ControlParticleCountsAreBoundedByTheFluid) {
            {"volume",
             scene(R"("target": {"shape": "sphere", "volume": 1000})"),
             {"target.volume", "control particles"}},
+           // Too small for the fluid's voxel: the volume is the key to change.
+           {"tinyvolume",
+            scene(R"("target": {"shape": "sphere", "volume": 1e-12})"),
+            {"target.volume: only ", "voxel(s) inside"}},
            {"schedule",
             scene(R"("schedule": [{"time": 0, "target": "sphere"},
                                              {"time": 0.001, "target": {"shape": "box", "control_count": 5}}])"),

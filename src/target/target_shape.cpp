@@ -44,9 +44,13 @@ std::string where(const TargetSpec& spec, const std::string& key = "") {
   return spec.where(key);
 }
 
-// The key that sets the voxel size.
+// The key that sets the voxel size; without one, the voxel is the fluid's
+// default and the shape's size is what the user set: its volume, if given.
 std::string voxelKey(const TargetSpec& spec) {
-  return spec.voxel_size > 0.0f ? "voxel_size" : spec.control_count > 0 ? "control_count" : "";
+  return spec.voxel_size > 0.0f   ? "voxel_size"
+         : spec.control_count > 0 ? "control_count"
+         : spec.volume > 0.0f     ? "volume"
+                                  : "";
 }
 
 // The key that sets the proportions of the shape.
@@ -185,8 +189,8 @@ double volumeToUse(const TargetSpec& spec, double fluid_rest_volume) {
   const double volume = spec.volume > 0.0f ? double(spec.volume) : fluid_rest_volume;
   if (!(volume > 0.0) || !std::isfinite(volume)) {
     std::ostringstream msg;
-    msg << where(spec) << ": the target volume must be positive (volume " << spec.volume
-        << ", fluid rest volume " << fluid_rest_volume << ")";
+    msg << where(spec, spec.volume > 0.0f ? "volume" : "") << ": the target volume must be positive (volume "
+        << spec.volume << ", fluid rest volume " << fluid_rest_volume << ")";
     throw Error(msg.str());
   }
   return volume;

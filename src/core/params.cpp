@@ -18,7 +18,8 @@ float FluidParams::restSpacing() const {
 int FluidParams::substepsFor(double max_density, double max_speed) const {
   (void)max_density;  // the sound speed of p = k (rho - rho0) does not depend on density
   const double c = solver == PressureSolverKind::Wcsph ? std::sqrt(std::max(0.0, double(gas_constant))) : 0.0;
-  const double dt_cfl = double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12);
+  const double dt_cfl =
+      std::min(double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12), double(max_substep));
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }
@@ -73,7 +74,9 @@ Params waterParams() {
   f.particle_mass = f.rest_density * volume;
   f.smoothing_radius = 2.0f * std::cbrt(volume);
   f.solver = PressureSolverKind::Dfsph;
-  f.cfl = 0.1f;  // a fifth of a spacing per substep at the largest speed (docs/PRESETS.md)
+  f.cfl = 0.1f;            // a fifth of a spacing per substep at the largest speed (docs/PRESETS.md)
+  f.max_substep = 0.002f;  // docs/PRESETS.md: 4 ms substeps make a resting column bounce
+  f.viscosity = 0.1f;      // docs/PRESETS.md: damps the settling of the cubic lattice
   return p;
 }
 

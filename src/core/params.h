@@ -39,6 +39,8 @@ struct FluidParams {
   // which has no sound speed) and h the smoothing radius (up to max_substeps).
   float cfl = 0.4f;
   int max_substeps = 16;
+  // The longest substep (s), whatever the CFL condition allows.
+  float max_substep = 0.1f;
   // Last safeguard: no particle moves more than this fraction of h in one
   // substep (a velocity limit).
   float max_step_fraction = 0.5f;

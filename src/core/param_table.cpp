@@ -74,7 +74,7 @@ const std::vector<ParamInfo>& paramTable() {
       {"fluid", "cfl", T::Real, 0.0, 1.0, true, "CFL number of the automatic substeps", FF_FIELD(fluid.cfl)},
       {"fluid", "max_substeps", T::Integer, 1, 1000, false, "the most CFL substeps per step",
        FF_FIELD(fluid.max_substeps)},
-      {"fluid", "max_substep", T::Real, 1e-6, 0.1, false,
+      {"fluid", "max_substep", T::Real, 1e-6, 1.0, false,
        "the longest substep (s), whatever the CFL number allows", FF_FIELD(fluid.max_substep)},
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",

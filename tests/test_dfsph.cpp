@@ -120,7 +120,10 @@ TEST(Dfsph, RestLatticeHasRestDensityAtTheWallsWithoutGravity) {
   // The box is filled: every particle, at a face, an edge or a corner, has
   // the walls in place of the missing fluid.
   EXPECT_LT(worst, 0.01);
-  EXPECT_LT(sim.metrics().max_speed, 1e-3);
+  // At rest but for the push that removes the faces' small excess (the
+  // layered wall gives them +0.03 %): at most 0.1 % of a spacing per substep.
+  const double substep = p.fluid.time_step / sim.metrics().substeps;
+  EXPECT_LT(sim.metrics().max_speed, 1e-3 * p.fluid.restSpacing() / substep);
   EXPECT_EQ(sim.metrics().solver_capped, 0);
 }
 

@@ -33,6 +33,7 @@ OpenClBackend::Impl::Impl(int device_index)
   m_shares = makeKernel(program, "metrics_shares", ctx, 256, 4 * sizeof(cl_uint));
   bad.ensure(ctx.context(), sizeof(cl_int));
   fillBuffer(ctx.queue(), bad, cl_int(0), 1);
+  clamps.ensure(ctx.context(), sizeof(cl_uint));
 }
 
 OpenClBackend::OpenClBackend(int device_index)
@@ -93,6 +94,7 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
     for (DeviceBuffer* b : {&d.rho, &d.p, &d.ax, &d.ay, &d.az}) fillBuffer(q, *b, 0.0f, padded8(n_) - n_, n_);
     d.reach.ensure(c, padded8(n_));
     fillBuffer(q, d.reach, cl_uchar(0), padded8(n_));
+    fillBuffer(q, d.clamps, cl_uint(0), 1);
     setParams(params);
     grid_state_ = GridState::Stale;
     finishQueue(q);
@@ -246,7 +248,8 @@ void OpenClBackend::integrate(float dt) {
     const float vmax = f.max_step_fraction * f.smoothing_radius / dt;
     const float eps = 1e-6f * f.smoothing_radius;
     launch(d.queue(), d.integrate, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.ax.get(), d.ay.get(),
-           d.az.get(), cl_uint(n_), dt, vmax, eps, boxLo(box_), boxHi(box_), d.bad.get(), cl_int(tag));
+           d.az.get(), cl_uint(n_), dt, vmax, eps, boxLo(box_), boxHi(box_), d.clamps.get(), d.bad.get(),
+           cl_int(tag));
     grid_state_ = GridState::Stale;
     endPhase();
   });
@@ -268,12 +271,13 @@ size_t OpenClBackend::memoryBytes() const {
     for (const DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k], &d.id[k]})
       bytes += b->capacity();
   for (const DeviceBuffer* b :
-       {&d.rho,     &d.p,        &d.ax,     &d.ay,      &d.az,       &d.cx,         &d.cy,      &d.cz,
-        &d.cvx,     &d.cvy,      &d.cvz,    &d.x0,      &d.y0,       &d.z0,         &d.s,       &d.ux,
-        &d.uy,      &d.uz,       &d.gx,     &d.gy,      &d.gz,       &d.sx,         &d.sy,      &d.sz,
-        &d.ss,      &d.svx,      &d.svy,    &d.svz,     &d.cl_start, &d.cl_members, &d.rest_cx, &d.rest_cy,
-        &d.rest_cz, &d.of_start, &d.of,     &d.q,       &d.com_x,    &d.com_y,      &d.com_z,   &d.ccv_x,
-        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.rcentre, &d.reach,    &d.controlled, &d.partial, &d.bad})
+       {&d.rho,      &d.p,          &d.ax,      &d.ay,         &d.az,      &d.cx,       &d.cy,
+        &d.cz,       &d.cvx,        &d.cvy,     &d.cvz,        &d.x0,      &d.y0,       &d.z0,
+        &d.s,        &d.ux,         &d.uy,      &d.uz,         &d.gx,      &d.gy,       &d.gz,
+        &d.sx,       &d.sy,         &d.sz,      &d.ss,         &d.svx,     &d.svy,      &d.svz,
+        &d.cl_start, &d.cl_members, &d.rest_cx, &d.rest_cy,    &d.rest_cz, &d.of_start, &d.of,
+        &d.q,        &d.com_x,      &d.com_y,   &d.com_z,      &d.ccv_x,   &d.ccv_y,    &d.ccv_z,
+        &d.inside,   &d.rcentre,    &d.reach,   &d.controlled, &d.partial, &d.clamps,   &d.bad})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
 }

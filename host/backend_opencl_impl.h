@@ -47,7 +47,8 @@ struct OpenClBackend::Impl {
   DeviceBuffer partial;
   std::vector<float> partial_host;
   std::vector<cl_uint> partial_uint;
-  DeviceBuffer bad;  // the tag of the first kernel that wrote a NaN or Inf (ff_check.h), else 0
+  DeviceBuffer clamps;  // velocity clamps in integrate since the metrics last read them (one uint)
+  DeviceBuffer bad;     // the tag of the first kernel that wrote a NaN or Inf (ff_check.h), else 0
 
   const cl::Buffer& X() const { return x[cur].get(); }
   const cl::Buffer& Y() const { return y[cur].get(); }

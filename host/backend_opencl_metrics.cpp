@@ -42,6 +42,10 @@ StepMetrics OpenClBackend::computeMetrics() {
       blockingRead(q, d.partial.get(), groups * width * sizeof(float), d.partial_host.data());
       return finish(d.partial_host, groups, width, max_mask);
     };
+    cl_uint clamps = 0;
+    blockingRead(q, d.clamps.get(), sizeof(cl_uint), &clamps);
+    fillBuffer(q, d.clamps, cl_uint(0), 1);
+    m.velocity_clamps = long(clamps);
     if (n_ > 0) {
       const std::vector<double> f = reduce(d.m_fluid, n_, 4, (1u << 2) | (1u << 3), d.rho.get(), d.VX(),
                                            d.VY(), d.VZ(), cl_uint(n_), rho0);

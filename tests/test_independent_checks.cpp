@@ -182,6 +182,9 @@ TEST(IndependentChecks, VelocityIsClampedToTheStepLimit) {
   EXPECT_NEAR(f.vx[0], 0.6 * vmax, 1e-6 * vmax);
   EXPECT_NEAR(f.vy[0], -0.8 * vmax, 1e-6 * vmax);
   EXPECT_NEAR(f.x[0], 0.5 + 0.6 * vmax * dt, 1e-6);
+  // The metric counts that one clamp, and the next metrics start again from 0.
+  EXPECT_EQ(cpu.computeMetrics().velocity_clamps, 1);
+  EXPECT_EQ(cpu.computeMetrics().velocity_clamps, 0);
 }
 
 // The grid build sorts the particles by cell: `id` must still name each

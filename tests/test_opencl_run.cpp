@@ -96,10 +96,12 @@ TEST(OpenClRun, DefaultSceneEndsAtTheCpuBackendsIou) {
   ff::Simulation cpu(scene, std::make_unique<ff::CpuBackend>(2));
   std::printf("OpenCL device: %s\n", ocl.backend().device().c_str());
   const long steps = 500;
+  long clamps_cpu = 0, clamps_ocl = 0;
   for (long s = 1; s <= steps; ++s) {
     ASSERT_NO_THROW(cpu.step()) << "cpu, step " << s;
     ASSERT_NO_THROW(ocl.step()) << "opencl, step " << s;
     ASSERT_TRUE(finite(ocl.metrics())) << "step " << s;
+    clamps_cpu += cpu.metrics().velocity_clamps, clamps_ocl += ocl.metrics().velocity_clamps;
     if (s % 100 == 0)
       std::printf("  step %ld  iou cpu %.4f opencl %.4f   max_speed cpu %.4f opencl %.4f\n", s,
                   cpu.metrics().iou, ocl.metrics().iou, cpu.metrics().max_speed, ocl.metrics().max_speed);
@@ -110,6 +112,12 @@ TEST(OpenClRun, DefaultSceneEndsAtTheCpuBackendsIou) {
   expectPhysicalState(ocl, "opencl, step 500");
   EXPECT_NEAR(ocl.metrics().iou, cpu.metrics().iou, runIouTol(ocl.backend()));
   EXPECT_NEAR(ocl.metrics().coverage, cpu.metrics().coverage, runIouTol(ocl.backend()));
+  // The velocity clamps are counted from the same shared body (ff_integrate.h):
+  // the same count where the backends round alike.
+  std::printf("  velocity clamps over %ld steps: cpu %ld opencl %ld\n", steps, clamps_cpu, clamps_ocl);
+  if (exact(ocl.backend())) {
+    EXPECT_EQ(clamps_ocl, clamps_cpu);
+  }
   // The schedule switches to the torus at 2 s, at the start of step 501.
   for (long s = 501; s <= 505; ++s) {
     ASSERT_NO_THROW(cpu.step()) << "cpu, step " << s;

@@ -25,15 +25,16 @@ struct StepMetrics {
   double filled = 0.0;             // share of the target's voxels that hold fluid
   double captured = 0.0;           // share of the controlled fluid inside the target
   double stray = 0.0;              // share of the controlled fluid out of every control particle's reach
+  long velocity_clamps = 0;        // fluid velocities the speed limit cut since the previous metrics
 };
 
 // The metrics as a table row: the column names (the CSV header of
 // `flowform run --metrics`, the keys of the Python module's arrays) and the
 // values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 16> kMetricColumns = {
+inline constexpr std::array<const char*, 17> kMetricColumns = {
     "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
     "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-    "solver_capped",  "filled",        "captured",    "stray"};
+    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps"};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),
@@ -51,7 +52,8 @@ inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics&
           double(m.solver_capped),
           m.filled,
           m.captured,
-          m.stray};
+          m.stray,
+          double(m.velocity_clamps)};
 }
 
 }  // namespace ff

@@ -145,6 +145,8 @@ StepMetrics CpuBackend::computeMetrics() {
   const SolverStats st = solver_->take();
   m.solver_iterations = st.iterations;
   m.solver_capped = st.capped;
+  m.velocity_clamps = fluid_.velocity_clamps;
+  fluid_.velocity_clamps = 0;
   if (controller_.active()) {
     const auto& sv = controller_.fields().s;
     double cov = 0.0;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "cpu/lane_group.h"
+#include "ff_integrate.h"
 #include "ff_sph.h"
 #include "parallel/simd8.h"
 
@@ -191,27 +192,21 @@ bool integrateFluid(CpuFluid& f, const FluidParams& p, const ContainerDesc& box,
   const long n = long(f.size());
   const float vmax = p.max_step_fraction * p.smoothing_radius / dt;
   const float eps = 1e-6f * p.smoothing_radius;
+  const float lo[3] = {box.min[0], box.min[1], box.min[2]}, hi[3] = {box.max[0], box.max[1], box.max[2]};
   FluidState& s = f.s;
   f.grid_current = false, f.sorted = false;
   int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad)
+  long clamps = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad) reduction(+ : clamps)
   for (long i = 0; i < n; ++i) {
-    float v[3] = {s.vx[i] + dt * f.ax[i], s.vy[i] + dt * f.ay[i], s.vz[i] + dt * f.az[i]};
-    const float sp = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (sp > vmax) {
-      const float c = vmax / sp;
-      v[0] *= c, v[1] *= c, v[2] *= c;
-    }
-    float x[3] = {s.x[i] + dt * v[0], s.y[i] + dt * v[1], s.z[i] + dt * v[2]};
-    for (int d = 0; d < 3; ++d) {
-      const float lo = box.min[d] + eps, hi = box.max[d] - eps;
-      if (x[d] < lo) x[d] = lo, v[d] = v[d] < 0.0f ? 0.0f : v[d];
-      if (x[d] > hi) x[d] = hi, v[d] = v[d] > 0.0f ? 0.0f : v[d];
-    }
+    float v[3] = {s.vx[i], s.vy[i], s.vz[i]}, x[3] = {s.x[i], s.y[i], s.z[i]};
+    const float a[3] = {f.ax[i], f.ay[i], f.az[i]};
+    clamps += ff_integrate_particle(v, x, a, dt, vmax, lo, hi, eps);
     s.x[i] = x[0], s.y[i] = x[1], s.z[i] = x[2];
     s.vx[i] = v[0], s.vy[i] = v[1], s.vz[i] = v[2];
     for (int d = 0; d < 3; ++d) bad |= std::isfinite(x[d]) && std::isfinite(v[d]) ? 0 : 1;
   }
+  f.velocity_clamps += clamps;
   return !bad;
 }
 

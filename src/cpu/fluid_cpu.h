@@ -26,6 +26,8 @@ struct CpuFluid {
   bool sorted = false;
   std::vector<float> scratch;
   std::vector<uint32_t> scratch_u;
+  // Velocity clamps (ff_integrate_particle) since the metrics last took them.
+  long velocity_clamps = 0;
   size_t size() const { return s.size(); }
   size_t memoryBytes() const;
 };

@@ -46,7 +46,7 @@ void OpenClBackend::applyControlForces(float dt) {
     launch(d.queue(), d.control_gather, nc_, d.control_r.order.get(), cl_uint(nc_), d.cx.get(), d.cy.get(),
            d.cz.get(), d.s.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.sx.get(), d.sy.get(), d.sz.get(),
            d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get());
-    const int per_density = cp.units == ControlForceUnits::ForceDensity ? 1 : 0;
+    const int pull_mode = cp.pullMode();
     const float unit_scale = cp.units == ControlForceUnits::Force ? 1.0f / params_.fluid.particle_mass : 1.0f;
     const float cp_volume = control_.particle_volume;
     const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
@@ -62,7 +62,7 @@ void OpenClBackend::applyControlForces(float dt) {
     launch(d.queue(), k, lanes_ ? padded8(n_) / 8 : n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
            d.rho.get(), cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(),
            d.svz.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
-           cp.attraction, cp.velocity, cp.gravity_compensation, per_density, unit_scale,
+           cp.pullAttraction(g), cp.pullVelocity(g), cp.gravity_compensation, pull_mode, unit_scale,
            f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.id[d.cur].get(), mask, cl_int(masked_ ? 1 : 0),
            rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(), d.bad.get(), cl_int(tag));
     endPhase();

@@ -53,7 +53,7 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
                                   __global const float* x, __global const float* y, __global const float* z,
                                   __global const float* vx, __global const float* vy,
                                   __global const float* vz, __global const float* rho, float cp_volume,
-                                  float full_at, float wa, float wv, float gc, int per_density,
+                                  float full_at, float wa, float wv, float gc, int pull_mode,
                                   float unit_scale, float4 gravity, float dt, __global const float* rcentre,
                                   __global const uint* id, __global const uchar* controlled, int use_mask,
                                   float4 rparams, __global float* ax, __global float* ay, __global float* az,
@@ -74,7 +74,8 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
     }
   }
   if (wsum <= 0.0f) return;
-  const float scale = per_density ? 1.0f / rho[e] : unit_scale;
+  const float scale =
+      ff_pull_scale(pull_mode, wsum, cp_volume, pull_mode == FF_PULL_PER_DENSITY ? rho[e] : 1.0f, unit_scale);
   const float kk = wv * wsum * scale;
   fa = fa * (wa * scale);
   // Gravity carried by the control (all of it inside the shape).
@@ -87,7 +88,8 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
   if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
 }
 
-// per_density: divide by rho_e (force density); else multiply by unit_scale (1, or 1 / m for a force).
+// pull_mode (ff_pull_scale): FF_PULL_PER_DENSITY divides by rho_e (force density), FF_PULL_NORMALISED by
+// the local control weight; FF_PULL_UNITS multiplies by unit_scale (1, or 1 / m for a force).
 // full_at = ff_control_full_coverage(cp_volume, radius, ff_poly6_coef(radius)), evaluated
 // once on the host (as the CPU backend does) so that both use the same cbrt.
 // The control grid (cells of radius / FF_CONTROL_GRID_DIVISIONS) is read in
@@ -98,7 +100,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
                              __global const float* sy, __global const float* sz, __global const float* ss,
                              __global const float* svx, __global const float* svy, __global const float* svz,
                              __global const uint* start, float4 geo, int4 dims, float cell, float radius,
-                             float cp_volume, float full_at, float wa, float wv, float gc, int per_density,
+                             float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
                              float unit_scale, float4 gravity, float dt, __global const float* rcentre,
                              __global const uint* id, __global const uchar* controlled, int use_mask,
                              float4 rparams, __global float* ax, __global float* ay, __global float* az,
@@ -132,7 +134,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
     }
   }
   control_forces_finish(e, fa, wsum, vsx, vsy, vsz, x, y, z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
-                        per_density, unit_scale, gravity, dt, rcentre, id, controlled, use_mask, rparams, ax,
+                        pull_mode, unit_scale, gravity, dt, rcentre, id, controlled, use_mask, rparams, ax,
                         ay, az, reached, bad, tag);
 }
 
@@ -143,7 +145,7 @@ __kernel void control_forces_lanes(
     __global const float* sx, __global const float* sy, __global const float* sz, __global const float* ss,
     __global const float* svx, __global const float* svy, __global const float* svz,
     __global const uint* start, float4 geo, int4 dims, float cell, float radius, float cp_volume,
-    float full_at, float wa, float wv, float gc, int per_density, float unit_scale, float4 gravity, float dt,
+    float full_at, float wa, float wv, float gc, int pull_mode, float unit_scale, float4 gravity, float dt,
     __global const float* rcentre, __global const uint* id, __global const uchar* controlled, int use_mask,
     float4 rparams, __global float* ax, __global float* ay, __global float* az, __global uchar* reached,
     __global int* bad, int tag) {
@@ -178,7 +180,6 @@ __kernel void control_forces_lanes(
   const uint m = n - i0 < 8u ? n - i0 : 8u;
   for (uint l = 0; l < m; ++l)
     control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], x, y,
-                          z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc, per_density, unit_scale,
-                          gravity, dt, rcentre, id, controlled, use_mask, rparams, ax, ay, az, reached, bad,
-                          tag);
+                          z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc, pull_mode, unit_scale, gravity,
+                          dt, rcentre, id, controlled, use_mask, rparams, ax, ay, az, reached, bad, tag);
 }

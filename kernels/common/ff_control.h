@@ -60,6 +60,27 @@ FF_FN float ff_velocity_force_implicit(float vsum, float k, float v, float dt) {
   return (vsum - k * v) / (1.0f + dt * k);
 }
 
+/* How eq. 4 and eq. 6's sums become accelerations (the "scale mode" both
+ * backends pass): as the paper writes them, times unit_scale (1, or 1 / m for
+ * the force reading); divided by the density (the force-density reading); or
+ * normalised by the local control weight (params.control.normalise,
+ * docs/CONTROL_UNITS.md, "Normalised pull"). Normalised, the sums are divided
+ * by wsum = sum_i W_i, as Thuerey's implementation divides by the total
+ * weight, but never by less than the weight of a half-filled neighbourhood,
+ * 1 / (2 v_c) for control particles of rest volume v_c (a flat surface of the
+ * shape): inside the shape the attraction is the weighted mean of eq. 4's
+ * terms and the velocity force relaxes at a fixed rate, whatever the control
+ * particles' spacing; outside, both fade to 0 at the edge of reach, as the
+ * paper's do. A control set of any density then pulls alike. */
+#define FF_PULL_UNITS 0
+#define FF_PULL_PER_DENSITY 1
+#define FF_PULL_NORMALISED 2
+FF_FN float ff_pull_scale(int mode, float wsum, float v_c, float rho, float unit_scale) {
+  return mode == FF_PULL_NORMALISED    ? 1.0f / FF_FMAX(wsum, 0.5f / v_c)
+         : mode == FF_PULL_PER_DENSITY ? 1.0f / rho
+                                       : unit_scale;
+}
+
 /* Fluid feedback: the control particle's velocity relaxes towards u_bar, the
  * kernel-weighted mean fluid velocity around it (zero where no fluid is). */
 FF_FN ff_float3 ff_feedback_velocity(ff_float3 v, ff_float3 u_bar, float coef) {

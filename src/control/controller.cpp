@@ -174,9 +174,10 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i], ss_[k] = fields_.s[i];
     svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
   }
-  const bool per_density = cp_.units == ControlForceUnits::ForceDensity;
+  const int mode = cp_.pullMode();
   const float unit_scale = cp_.units == ControlForceUnits::Force ? 1.0f / f.mass : 1.0f;
-  const float wa = cp_.attraction, wv = cp_.velocity, gc = cp_.gravity_compensation;
+  const float wa = cp_.pullAttraction(f.gravity), wv = cp_.pullVelocity(f.gravity),
+              gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
   const float full_at = ff_control_full_coverage(cp_volume, r, coef);
   // Recapture: the centre of the unfilled control particles and its fade.
@@ -216,7 +217,8 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
       }
       if (wsum <= 0.0f) continue;
       reached_[i] = 1;
-      const float scale = per_density ? 1.0f / (f.rho ? f.rho[i] : f.rest_density) : unit_scale;
+      const float rho = mode == FF_PULL_PER_DENSITY ? (f.rho ? f.rho[i] : f.rest_density) : 1.0f;
+      const float scale = ff_pull_scale(mode, wsum, cp_volume, rho, unit_scale);
       const float kv = wv * wsum * scale;
       ff_float3 fa = FF_F3(sums[l], sums[8 + l], sums[16 + l]) * (wa * scale);
       // Gravity carried by the control (all of it inside the shape).

@@ -94,6 +94,16 @@ const std::vector<ParamInfo>& paramTable() {
        FF_FIELD(control.recapture)},
       {"control", "units", T::Units, 0.0, 0.0, false,
        "how eq. 4 and 6 act: \"acceleration\", \"force_density\" or \"force\"", FF_FIELD(control.units)},
+      {"control", "normalise", T::Integer, 0, 1, false,
+       "1: eq. 4 and 6 normalised by the local control weight (attraction_g, velocity_rate; units unused); "
+       "0: as the paper writes them (attraction, velocity, units)",
+       FF_FIELD(control.normalise)},
+      {"control", "attraction_g", T::Real, 0.0, 1e3, false,
+       "normalised attraction (normalise = 1): its most, in units of gravity",
+       FF_FIELD(control.attraction_g)},
+      {"control", "velocity_rate", T::Real, 0.0, 1e3, false,
+       "normalised velocity force (normalise = 1): relaxation rate in units of sqrt(g / radius)",
+       FF_FIELD(control.velocity_rate)},
 
       {"shape_matching", "stiffness", T::Real, 0.0, 1.0, false, "alpha of eq. 7", FF_FIELD(shape.stiffness)},
       {"shape_matching", "time_step", T::Real, 1e-6, 1.0, false,

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/param_table.h"
 #include "core/resource_limits.h"
+#include "ff_control.h"
 
 namespace ff {
 
@@ -37,6 +38,19 @@ float ControlParams::recaptureSpeed(const float g[3]) const {
 
 float ControlParams::recaptureRate(const float g[3]) const {
   return std::sqrt(gravityScale(g) / radius);
+}
+
+float ControlParams::pullAttraction(const float g[3]) const {
+  return normalise ? attraction_g * gravityScale(g) : attraction;
+}
+
+float ControlParams::pullVelocity(const float g[3]) const {
+  return normalise ? velocity_rate * std::sqrt(gravityScale(g) / radius) : velocity;
+}
+
+int ControlParams::pullMode() const {
+  if (normalise) return FF_PULL_NORMALISED;
+  return units == ControlForceUnits::ForceDensity ? FF_PULL_PER_DENSITY : FF_PULL_UNITS;
 }
 
 double ShapeMatchParams::clustersPerParticle() const {

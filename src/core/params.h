@@ -78,6 +78,21 @@ struct ControlParams {
   // The recapture's speed and relaxation rate for gravity g (9.81 m/s^2 when g is 0).
   float recaptureSpeed(const float g[3]) const;
   float recaptureRate(const float g[3]) const;
+  // Normalised pull (docs/CONTROL_UNITS.md, "Normalised pull"): 0 = eq. 4
+  // and 6 as the paper writes them, with attraction and velocity (w_a, w_v)
+  // in `units`; 1 = normalised by the local control weight, so that the pull
+  // does not depend on the control particles' density, with the constants
+  // below relative to gravity g and the control radius r. The defaults equal
+  // the paper's w_a and w_v for the bunny's control spacing (9.8 mm).
+  int normalise = 0;
+  float attraction_g = 8.7f;   // most attraction, in units of g
+  float velocity_rate = 2.9f;  // the velocity force's relaxation rate, in units of sqrt(g / r)
+  // The constants eq. 4 and 6 are multiplied by (w_a, w_v, or their normalised
+  // forms g attraction_g and sqrt(g / r) velocity_rate), and the scale mode
+  // of ff_pull_scale (kernels/common/ff_control.h).
+  float pullAttraction(const float g[3]) const;
+  float pullVelocity(const float g[3]) const;
+  int pullMode() const;
 };
 
 struct ShapeMatchParams {

@@ -12,6 +12,7 @@
 
 #include "app/bench_runner.h"
 #include "cli_run.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -157,6 +158,31 @@ TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
   ASSERT_EQ(seen.size(), 4u) << r.out;
   for (const auto& [scene, count] : paper)
     EXPECT_NEAR(double(seen[scene]), double(count), 0.03 * double(count)) << scene;
+}
+
+// --stability: the unscaled run and one per parameter and factor, each
+// parameter scaled from the preset's value (the paper's w_a = 0.00008,
+// alpha = 0.3) and kept in its range (alpha x4 = 1.2 is clipped to 1).
+TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
+  const fftest::TempDir d("bench_stability");
+  const fs::path scene = d / "s.json";
+  std::ofstream(scene) << fftest::blockSceneJson(
+      "tiny", 0.2, 0.07, 0.07, 8, "\"preset\": \"paper\", \"target\": \"sphere\"");
+  auto r = runFlowform("bench --stability --backend cpu --threads 2 --stability-scene '" + scene.string() +
+                       "' --stability-seconds 0.02 --stability-factors 0.5,4 "
+                       "--stability-params control.attraction,shape_matching.stiffness");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("| (none) | 1 | - | stable |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| control.attraction | 0.5 | 4e-05 | stable |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| control.attraction | 4 | 0.00032 | stable |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| shape_matching.stiffness | 0.5 | 0.15 | stable |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| shape_matching.stiffness | 4 | 1 (range limit) | stable |"), std::string::npos)
+      << r.out;
+  // Not a number parameter: refused, naming the option.
+  auto bad = runFlowform("bench --stability --backend cpu --stability-scene '" + scene.string() +
+                         "' --stability-params control.units");
+  EXPECT_EQ(bad.code, 1) << bad.out;
+  EXPECT_NE(bad.out.find("--stability-params: 'control.units'"), std::string::npos) << bad.out;
 }
 
 TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {

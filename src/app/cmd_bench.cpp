@@ -14,6 +14,7 @@
 #include "app/bench_report.h"
 #include "app/bench_runner.h"
 #include "app/bench_soak.h"
+#include "app/bench_stability.h"
 #include "app/commands.h"
 #include "app/kernels_option.h"
 #include "core/error.h"
@@ -40,6 +41,10 @@ struct BenchOptions {
   int metrics_every = 1;
   bool soak = false;
   SoakOptions soak_options;
+  bool stability = false;
+  StabilityOptions stability_options;
+  std::string stability_scene;  // empty: the built-in bunny
+  std::string preset;           // empty: the scene's own parameters
 };
 
 // The backends to time: the OpenMP one and every OpenCL device (or the ones asked for).
@@ -177,9 +182,28 @@ int runSoaks(const BenchOptions& o) {
   return 0;
 }
 
+// --stability: the parameter sweep on every backend; exit 1 if a run exploded.
+int runStabilitySweep(const BenchOptions& o) {
+  SceneDesc scene = o.stability_scene.empty() ? table1Cases().front().scene : loadScene(o.stability_scene);
+  if (!o.preset.empty()) {
+    scene.params = presetParams(o.preset);
+    scene.preset = o.preset;
+  }
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  int rc = 0;
+  for (const BenchBackend& b : chooseBackends(o)) {
+    const std::vector<StabilityRun> runs = runStability(scene, o.stability_options, b);
+    std::printf("\nbackend %s\n", b.kind.c_str());
+    printStability(stdout, scene, runs);
+    for (const StabilityRun& r : runs) rc |= r.exploded ? 1 : 0;
+  }
+  return rc;
+}
+
 int runBench(BenchOptions o) {
   validate(o);
   if (o.soak) return runSoaks(o);
+  if (o.stability) return runStabilitySweep(o);
   if (!o.table1 && !o.fluid_sweep && !o.control_sweep) o.table1 = o.fluid_sweep = o.control_sweep = true;
   if (o.threads > 0) omp_set_num_threads(o.threads);
   const std::vector<BenchBackend> backends = chooseBackends(o);
@@ -241,6 +265,24 @@ std::function<int()> addBenchCommand(CLI::App& app) {
   cmd->add_option("--soak-changes", o->soak_options.changes, "Target changes of the soak (default 300)");
   cmd->add_option("--soak-steps", o->soak_options.steps_between,
                   "Steps after each change of the soak (default 4)");
+  cmd->add_flag(
+      "--stability", o->stability,
+      "Stability sweep instead of timing: every control and shape-matching parameter scaled one at a "
+      "time by each --stability-factors, a short run each on the bunny (or --stability-scene); "
+      "reports NaN, explosions (faster than twice a free fall through the container) and velocity "
+      "clamps; exit 1 if a run exploded");
+  cmd->add_option("--stability-scene", o->stability_scene,
+                  "Scene of the sweep (default: the built-in bunny)");
+  cmd->add_option("--stability-seconds", o->stability_options.seconds,
+                  "Simulated seconds per sweep run (default 1.5)");
+  cmd->add_option("--stability-factors", o->stability_options.factors,
+                  "Factors, comma-separated (default 0.25,0.5,2,4)")
+      ->delimiter(',');
+  cmd->add_option(
+         "--stability-params", o->stability_options.params,
+         "Parameters, comma-separated as GROUP.KEY (default: every control and shape_matching number)")
+      ->delimiter(',');
+  cmd->add_option("--preset", o->preset, "Sweep with this preset's parameters instead of the scene's");
   return [o] { return runBench(*o); };
 }
 

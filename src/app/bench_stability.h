@@ -1,0 +1,47 @@
+// bench_stability.h - `flowform bench --stability`: every control and
+// shape-matching parameter scaled one at a time (x0.25, x0.5, x2, x4 by
+// default) on one scene, each a short run, reporting NaN, explosions and the
+// velocity clamps (docs/RESULTS.md, "Stability sweep").
+#pragma once
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "app/bench_runner.h"
+#include "scene/scene.h"
+
+namespace ff::app {
+
+struct StabilityOptions {
+  double seconds = 1.5;                              // simulated time per run
+  std::vector<double> factors{0.25, 0.5, 2.0, 4.0};  // applied to each parameter in turn
+  std::vector<std::string> params;  // "group.key"; empty: every control and shape-matching number
+};
+
+struct StabilityRun {
+  std::string param;  // "control.attraction", or "(none)" for the unscaled run
+  double factor = 1.0;
+  double value = 0.0;    // the value run (scaled, then kept in the parameter's range)
+  bool clipped = false;  // the scaled value fell outside the range and was clipped to it
+  long steps = 0;
+  std::string nan;  // empty, or where a value became NaN or Inf
+  double max_speed = 0.0, max_density_error = 0.0;
+  long clamps = 0;         // velocity clamps over the run
+  long clamped_steps = 0;  // steps with at least one clamp
+  double final_iou = 0.0, final_stray = 0.0;
+  bool exploded = false;  // NaN, or faster than the explosion speed
+  double wall_s = 0.0;
+};
+
+// The speed (m/s) above which a run counts as exploded: twice the speed of a
+// free fall through the container's tallest extent, sqrt(2 g L).
+double explosionSpeed(const SceneDesc& scene);
+
+// Runs the unscaled scene, then each parameter at each factor, on one backend;
+// progress on stderr.
+std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOptions& options,
+                                       const BenchBackend& backend);
+// A Markdown table of the runs.
+void printStability(std::FILE* out, const SceneDesc& scene, const std::vector<StabilityRun>& runs);
+
+}  // namespace ff::app

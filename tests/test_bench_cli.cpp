@@ -166,8 +166,8 @@ TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
 TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
   const fftest::TempDir d("bench_stability");
   const fs::path scene = d / "s.json";
-  std::ofstream(scene) << fftest::blockSceneJson(
-      "tiny", 0.2, 0.07, 0.07, 8, "\"preset\": \"paper\", \"target\": \"sphere\"");
+  std::ofstream(scene) << fftest::blockSceneJson("tiny", 0.2, 0.07, 0.07, 8,
+                                                 "\"preset\": \"paper\", \"target\": \"sphere\"");
   auto r = runFlowform("bench --stability --backend cpu --threads 2 --stability-scene '" + scene.string() +
                        "' --stability-seconds 0.02 --stability-factors 0.5,4 "
                        "--stability-params control.attraction,shape_matching.stiffness");

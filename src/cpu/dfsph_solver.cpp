@@ -145,25 +145,19 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
 
 void DfsphSolver::rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz) {
   const Kernel kr(vol_h_);
-  const long groups = long(f.groups.size() / 2);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+  forEachGroup(f.groups, [&](uint32_t b, uint32_t e) {
     float rs[8];
     rateSums(f, vx, vy, vz, b, e, kr, rs);
     for (uint32_t i = b; i < e; ++i) {
       const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
       rate_[i] = ff_dfsph_rate(rs[i - b], vol_, u, wg);
     }
-  }
+  });
 }
 
 void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k) {
   const Kernel kr(vol_h_);
-  const long groups = long(f.groups.size() / 2);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+  forEachGroup(f.groups, [&](uint32_t b, uint32_t e) {
     float ks[24];
     kappaSums(f, k.data(), b, e, kr, ks);
     for (uint32_t i = b; i < e; ++i) {
@@ -173,7 +167,7 @@ void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k)
       ff_dfsph_velocity_change(sum, k[i], vol_, wg, du);
       dux_[i] = du[0], duy_[i] = du[1], duz_[i] = du[2];
     }
-  }
+  });
 }
 
 double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {

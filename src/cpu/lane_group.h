@@ -35,4 +35,13 @@ inline void loadGroup(const FluidState& s, uint32_t b, uint32_t e, float radius,
   grid.rangesNear(lo, hi, radius, spans);
 }
 
+// Runs body(b, e) over the lane groups of `groups` (pairs [b, e), see
+// CpuFluid::groups) in parallel, each group on one thread.
+template <class Body>
+void forEachGroup(const std::vector<uint32_t>& groups, Body&& body) {
+  const long n = long(groups.size() / 2);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long gi = 0; gi < n; ++gi) body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
+}
+
 }  // namespace ff

@@ -145,6 +145,39 @@ TEST(FuzzRegressions, PlyMagicInAnyLetterCaseIsChecked) {
   EXPECT_NE(what.find("garbled PLY header"), std::string::npos) << what;
 }
 
+TEST(FuzzRegressions, PlyFileWithBytesBeforeTheMagicIsRefused) {
+  // assimp reads every .ply file with its PLY reader and looks for the magic
+  // past leading bytes; the checks looked only where the text starts, so
+  // these reached assimp: one crashed it (a binary file behind 6 stray
+  // bytes), the other (NUL bytes first) made it seek forever.
+  fftest::TempDir tmp("fuzz_ply_prefix");
+  for (const char* name : {"bytes_before_magic_crash.ply", "nul_bytes_before_magic_hang.ply"}) {
+    SCOPED_TRACE(name);
+    const std::string what = replay("mesh_ply", kFuzzDir / "regressions" / "mesh_ply" / name, tmp);
+    EXPECT_NE(what.find("garbled PLY header (line 1): the first line must be 'ply'"), std::string::npos)
+        << what;
+  }
+}
+
+TEST(FuzzRegressions, AMeshWhoseNameGivesNoFormatIsRefused) {
+  // Without a known extension assimp guesses the reader from the first
+  // bytes; the file's checks are chosen by its name, so the name must say.
+  fftest::TempDir tmp("fuzz_mesh_name");
+  const std::string cube = readAll(kFuzzDir / "corpus" / "mesh_obj" / "cube_quads.obj");
+  for (const char* name : {"cube", "cube.shape"}) {
+    SCOPED_TRACE(name);
+    const fs::path f = tmp.write(name, cube);
+    try {
+      ff::loadMesh(f.string());
+      ADD_FAILURE() << name << " accepted";
+    } catch (const ff::Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(f.string() + ": unknown mesh format"), std::string::npos) << what;
+    }
+  }
+  EXPECT_NO_THROW(ff::loadMesh(tmp.write("cube.OBJ", cube).string()));
+}
+
 }  // namespace
 
 namespace {

@@ -37,6 +37,15 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
+// Whether the file name ends in "." + ext (lower case), in any letter case.
+bool hasExtension(const std::string& path, const std::string& ext) {
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.size() - dot != ext.size() + 1) return false;
+  std::string own = path.substr(dot + 1);
+  for (char& c : own) c = char(std::tolower((unsigned char)c));
+  return own == ext;
+}
+
 bool isCount(const std::string& s) {
   return !s.empty() && s.size() <= 18 && s.find_first_not_of("0123456789") == std::string::npos;
 }
@@ -273,14 +282,6 @@ std::vector<std::pair<size_t, size_t>> offWords(const std::string& text, size_t 
   return out;
 }
 
-bool hasOffExtension(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || path.size() - dot != 4) return false;
-  std::string ext = path.substr(dot + 1);
-  for (char& c : ext) c = char(std::tolower((unsigned char)c));
-  return ext == "off";
-}
-
 void checkOff(const std::string& path, const std::string& head, uintmax_t file_size) {
   const auto first = offWords(head, 1);
   if (first.empty()) return;
@@ -288,7 +289,7 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
   const size_t keyword = token.find("OFF");
   // The keyword is optional in an .off file (assimp then reads the counts
   // from its first words); any other file without it is not OFF.
-  if (keyword == std::string::npos && !hasOffExtension(path)) return;
+  if (keyword == std::string::npos && !hasExtension(path, "off")) return;
   // The counts follow the keyword, even glued to it ("OFF8 6 0"); after
   // "nOFF" comes the dimension first.
   const std::string rest =
@@ -343,9 +344,14 @@ void checkOff(const std::string& path, const std::string& head, uintmax_t file_s
 
 void checkMeshFileStructure(const std::string& path, uintmax_t file_size) {
   const std::string head = readBytes(path, kHeadBytes);
-  // assimp skips line ends before the magic; the PLY checks then refuse them.
+  // assimp picks its PLY reader for every .ply file, whatever its first
+  // bytes, and then searches them for the magic (it skips line ends and NUL
+  // bytes; a fuzzed file with bytes before "ply" crashed it, another made it
+  // seek forever). A .ply file must therefore be a PLY file from its first
+  // byte on. assimp also skips line ends before the magic of a file of
+  // another name; the PLY checks then refuse them.
   const size_t text = std::min(head.find_first_not_of(" \t\r\n"), head.size());
-  if (isPlyMagic(head.substr(text, 3))) {
+  if (hasExtension(path, "ply") || isPlyMagic(head.substr(text, 3))) {
     checkPly(path, head, file_size);
   } else {
     checkOff(path, head, file_size);

@@ -134,9 +134,19 @@ TriangleMesh loadMesh(const std::string& path) {
   const uintmax_t size = fs::file_size(path, ec);
   if (ec) fail(path, "cannot read the file: " + ec.message());
   if (size == 0) fail(path, "the file is empty");
+  Assimp::Importer importer;
+  // The name decides the reader: assimp would otherwise guess the format from
+  // the first bytes, and a garbled file could then reach a reader that no
+  // check of mesh_file_checks.cpp has vetted.
+  const std::string extension = fs::path(path).extension().string();
+  if (extension.empty() || !importer.IsExtensionSupported(extension.c_str())) {
+    fail(path,
+         "unknown mesh format '" + extension +
+             "': name the file for its format (.obj, .stl, .ply, .off, .gltf, .glb, .fbx, .dae or another "
+             "extension assimp reads)");
+  }
   checkMeshFileStructure(path, size);
 
-  Assimp::Importer importer;
   const aiScene* scene = nullptr;
   std::string problem;
   try {

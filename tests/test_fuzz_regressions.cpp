@@ -159,6 +159,42 @@ TEST(FuzzRegressions, PlyFileWithBytesBeforeTheMagicIsRefused) {
   }
 }
 
+TEST(FuzzRegressions, PlyNamesAndAsciiLinesAreCheckedAsAssimpReadsThem) {
+  // assimp read a count of 2^32 - 1 from an element name made of digits and
+  // asked for 32 GB (both files); its ASCII reader reads one element per line.
+  fftest::TempDir tmp("fuzz_ply_names");
+  for (const char* name : {"element_name_of_digits_oom.ply", "empty_face_list_oom.ply"}) {
+    SCOPED_TRACE(name);
+    const std::string what = replay("mesh_ply", kFuzzDir / "regressions" / "mesh_ply" / name, tmp);
+    EXPECT_NE(what.find("garbled PLY header (line 4): unexpected 'element 3333"), std::string::npos) << what;
+  }
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string other_faces = "3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const struct {
+    const char* first_face;
+    const char* after;  // after the last face
+    const char* expected;
+  } kCases[] = {{"0\n", "", "line 5 after the header (face 1): bad list length 0"},
+                {"3 0 1\n", "", "line 5 after the header (face 1): fewer values"},
+                {"3 0 1 2 3\n", "", "line 5 after the header (face 1): more values"},
+                {"3 0 1 0x2\n", "", "'0x2' is not a number of the declared type"},
+                {"256 0 1 2\n", "", "bad list length (missing, or not a count of its type)"},
+                {"3 0 2 1\n", "7\n", "data after the last element"}};
+  for (const auto& c : kCases) {
+    SCOPED_TRACE(c.first_face);
+    const fs::path f = tmp.write("case.ply", head + c.first_face + other_faces + c.after);
+    try {
+      ff::loadMesh(f.string());
+      ADD_FAILURE() << "accepted";
+    } catch (const ff::Error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(ff::loadMesh(tmp.write("tet.ply", head + "3 0 2 1\n" + other_faces).string()));
+}
+
 TEST(FuzzRegressions, AMeshWhoseNameGivesNoFormatIsRefused) {
   // Without a known extension assimp guesses the reader from the first
   // bytes; the file's checks are chosen by its name, so the name must say.

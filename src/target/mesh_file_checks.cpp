@@ -100,6 +100,17 @@ bool isPlyMagic(const std::string& s) {
          std::tolower((unsigned char)s[1]) == 'l' && std::tolower((unsigned char)s[2]) == 'y';
 }
 
+// An element or property name: a letter or '_' first, then letters, digits,
+// '_', '-' or '.' (assimp read a count of 2^32 - 1 from an element name
+// that began with digits and asked for 32 GB).
+bool isPlyName(const std::string& s) {
+  if (s.empty() || !(std::isalpha((unsigned char)s[0]) || s[0] == '_')) return false;
+  for (char c : s) {
+    if (!(std::isalnum((unsigned char)c) || c == '_' || c == '-' || c == '.')) return false;
+  }
+  return true;
+}
+
 // Strict PLY header grammar.
 PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
   auto garbled = [&path](size_t line_no, const std::string& why) {
@@ -135,12 +146,13 @@ PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
     } else if (w[0] == "end_header" && w.size() == 1) {
       header.data_offset = pos;
       return header;
-    } else if (w[0] == "element" && w.size() == 3 && isCount(w[2])) {
+    } else if (w[0] == "element" && w.size() == 3 && isPlyName(w[1]) && isCount(w[2])) {
       header.elements.push_back({w[1], std::stoull(w[2]), {}});
-    } else if (w[0] == "property" && !header.elements.empty() && w.size() == 3 && plyType(w[1]).size > 0) {
+    } else if (w[0] == "property" && !header.elements.empty() && w.size() == 3 && plyType(w[1]).size > 0 &&
+               isPlyName(w[2])) {
       header.elements.back().properties.push_back({false, {}, plyType(w[1])});
     } else if (w[0] == "property" && !header.elements.empty() && w.size() == 5 && w[1] == "list" &&
-               plyType(w[2]).integer && plyType(w[3]).size > 0) {
+               plyType(w[2]).integer && plyType(w[3]).size > 0 && isPlyName(w[4])) {
       header.elements.back().properties.push_back({true, plyType(w[2]), plyType(w[3])});
     } else {
       garbled(line_no, "unexpected '" + line.substr(0, 60) + "'");
@@ -167,47 +179,78 @@ void checkPlySize(const std::string& path, const PlyHeader& header, uintmax_t fi
   }
 }
 
-// Walks the ASCII data: every value must be a number and every list count an
-// integer that the remaining data can satisfy (assimp reads past the end or
-// loops for minutes otherwise).
+// Whether `token` is a decimal number of the property's type: an integer in
+// the type's range, or a decimal floating-point number (no hex, inf or nan,
+// which assimp's number reader does not know).
+bool isPlyNumber(const std::string& token, const PlyType& type) {
+  size_t k = token.empty() || (token[0] != '-' && token[0] != '+') ? 0 : 1;
+  const bool negative = k == 1 && token[0] == '-';
+  const size_t digits_start = k;
+  while (k < token.size() && std::isdigit((unsigned char)token[k])) ++k;
+  if (type.integer) {
+    if (k != token.size() || k == digits_start || k - digits_start > 10) return false;
+    const long long value = std::stoll(token.substr(digits_start)) * (negative ? -1 : 1);
+    const int bits = 8 * type.size;
+    const long long lo = type.is_signed ? -(1LL << (bits - 1)) : 0;
+    const long long hi = type.is_signed ? (1LL << (bits - 1)) - 1 : (1LL << bits) - 1;
+    return value >= lo && value <= hi;
+  }
+  size_t mantissa = k - digits_start;
+  if (k < token.size() && token[k] == '.') {
+    const size_t frac = ++k;
+    while (k < token.size() && std::isdigit((unsigned char)token[k])) ++k;
+    mantissa += k - frac;
+  }
+  if (mantissa == 0) return false;
+  if (k < token.size() && (token[k] == 'e' || token[k] == 'E')) {
+    ++k;
+    if (k < token.size() && (token[k] == '-' || token[k] == '+')) ++k;
+    const size_t exponent = k;
+    while (k < token.size() && std::isdigit((unsigned char)token[k])) ++k;
+    if (k == exponent) return false;
+  }
+  return k == token.size();
+}
+
+// Walks the ASCII data as assimp reads it, one element per line: every line
+// holds exactly the values its element declares, each a number of its type;
+// every list has at least one value; nothing but white space follows the last
+// element. (assimp read past the end, looped for minutes or asked for 32 GB
+// on files that broke one of these.)
 void checkPlyAsciiData(const std::string& path, const PlyHeader& header, const std::string& data) {
   size_t pos = header.data_offset;
-  auto next = [&](std::string& token) {
-    while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
-    const size_t start = pos;
-    while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
-    token.assign(data, start, pos - start);
-    return !token.empty();
-  };
-  std::string token;
+  size_t line_no = 0;
   for (const PlyElement& e : header.elements) {
     for (uintmax_t n = 0; n < e.count; ++n) {
+      const std::string where = " (" + e.name + " " + std::to_string(n + 1) + ")";
+      if (pos >= data.size()) fail(path, "truncated PLY file: the " + e.name + " data ends early");
+      size_t eol = data.find('\n', pos);
+      if (eol == std::string::npos) eol = data.size();
+      const std::vector<std::string> w = words(data.substr(pos, eol - pos));
+      pos = eol + 1;
+      ++line_no;
+      const std::string line =
+          "garbled PLY data, line " + std::to_string(line_no) + " after the header" + where;
+      size_t next = 0;
       for (const PlyProperty& p : e.properties) {
         uintmax_t values = 1;
         if (p.list) {
-          if (!next(token)) fail(path, "truncated PLY file: the " + e.name + " data ends early");
-          if (!isCount(token) || token.size() > 9) {
-            fail(path, "garbled PLY data: bad list length '" + token.substr(0, 20) + "' in " + e.name + " " +
-                           std::to_string(n + 1));
-          }
-          values = std::stoull(token);
-          if (values > data.size() - pos) {
-            fail(path, "garbled or truncated PLY data: bad list length " + token + " in " + e.name + " " +
-                           std::to_string(n + 1));
-          }
+          if (next >= w.size() || !isPlyNumber(w[next], p.count_type) || w[next][0] == '-')
+            fail(path, line + ": bad list length (missing, or not a count of its type)");
+          values = std::stoull(w[next++]);
+          if (values == 0) fail(path, line + ": bad list length 0 (a list of no values)");
         }
-        for (uintmax_t v = 0; v < values; ++v) {
-          if (!next(token)) fail(path, "truncated PLY file: the " + e.name + " data ends early");
-          char* end = nullptr;
-          std::strtod(token.c_str(), &end);
-          if (end != token.c_str() + token.size()) {
-            fail(path, "garbled PLY data: '" + token.substr(0, 20) + "' is not a number (" + e.name + " " +
-                           std::to_string(n + 1) + ")");
-          }
+        if (values > w.size() - next) fail(path, line + ": fewer values than the header declares");
+        for (uintmax_t v = 0; v < values; ++v, ++next) {
+          if (!isPlyNumber(w[next], p.value_type))
+            fail(path, line + ": '" + w[next].substr(0, 20) + "' is not a number of the declared type");
         }
       }
+      if (next != w.size()) fail(path, line + ": more values than the header declares");
     }
   }
+  if (pos < data.size() && data.find_first_not_of(" \t\r\n", pos) != std::string::npos)
+    fail(path, "garbled PLY file: data after the last element the header declares");
 }
 
 uintmax_t readCount(const unsigned char* p, const PlyType& type, bool big_endian, bool& negative) {
@@ -218,7 +261,7 @@ uintmax_t readCount(const unsigned char* p, const PlyType& type, bool big_endian
   return value;
 }
 
-// Walks the binary data: every list length must fit into the file.
+// Walks the binary data: every list has at least one value and fits into the file.
 void checkPlyBinaryData(const std::string& path, const PlyHeader& header, const std::string& data) {
   const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
   const uintmax_t size = data.size();
@@ -236,7 +279,7 @@ void checkPlyBinaryData(const std::string& path, const PlyHeader& header, const 
           bool negative = false;
           const uintmax_t count = readCount(bytes + pos, p.count_type, big, negative);
           pos += uintmax_t(p.count_type.size);
-          if (negative || count > (size - pos) / uintmax_t(p.value_type.size)) {
+          if (negative || count == 0 || count > (size - pos) / uintmax_t(p.value_type.size)) {
             fail(path,
                  "garbled or truncated PLY data: bad list length in " + e.name + " " + std::to_string(n + 1));
           }

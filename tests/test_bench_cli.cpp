@@ -185,6 +185,59 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
   EXPECT_NE(bad.out.find("--stability-params: 'control.units'"), std::string::npos) << bad.out;
 }
 
+// --dambreak --quick: a row per solver the backend runs (wcsph everywhere),
+// each with a finite positive wall time per simulated second, substeps within
+// the CFL range, iterations only for dfsph, a small density error and no
+// particle outside the container; a solver a backend cannot run is named.
+TEST(BenchCli, DambreakQuickReportsEverySolverWithSaneValues) {
+  auto r = runFlowform("bench --dambreak --quick --seconds 0.02 --threads 2 --backend cpu");
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::map<std::string, std::vector<std::string>> rows;  // solver -> cells
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| wcsph |", 0) != 0 && line.rfind("| dfsph |", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream ls(line.substr(1));
+    for (std::string c; std::getline(ls, c, '|');) {
+      const size_t b = c.find_first_not_of(" *"), e = c.find_last_not_of(" *");
+      cells.push_back(b == std::string::npos ? "" : c.substr(b, e - b + 1));
+    }
+    rows[cells[0]] = cells;
+  }
+  // dfsph: a row, or (a build without it) a line saying why not.
+  ASSERT_EQ(rows.count("wcsph"), 1u) << r.out;
+  EXPECT_TRUE(rows.count("dfsph") == 1 || r.out.find("not run: dfsph on cpu") != std::string::npos) << r.out;
+  for (const auto& [solver, c] : rows) {
+    ASSERT_EQ(c.size(), 15u) << solver;
+    EXPECT_EQ(c[1], solver == "dfsph" ? "water" : "paper");
+    EXPECT_EQ(c[2], "cpu");
+    EXPECT_EQ(std::stol(c[4]), 10L * 20 * 8);
+    // 0.02 s of timed frame steps of 4 ms: 5 steps (after an untimed one).
+    EXPECT_NEAR(std::stod(c[5]), 0.02, 1e-6) << solver;
+    EXPECT_EQ(std::stoi(c[6]), 5) << solver;
+    const double wall = std::stod(c[7]), ms = std::stod(c[8]);
+    EXPECT_GT(wall, 0.0) << solver;
+    // wall s per sim s = ms per step / the 4 ms frame step (printed rounded).
+    EXPECT_NEAR(wall, ms / 4.0, 1e-3 + 1e-2 * wall) << solver;
+    const double substeps = std::stod(c[9]);
+    EXPECT_GE(substeps, 1.0) << solver;
+    EXPECT_LE(substeps, 16.0) << solver;
+    const double iterations = std::stod(c[10]);
+    if (solver == "wcsph")
+      EXPECT_EQ(iterations, 0.0);
+    else  // at least 1 divergence and 2 density iterations per substep
+      EXPECT_GE(iterations, 3.0 * substeps) << solver;
+    const double mean_err = std::stod(c[11]), max_err = std::stod(c[12]);
+    EXPECT_GE(mean_err, 0.0) << solver;
+    EXPECT_LT(mean_err, 0.5) << solver;  // the first 20 ms of a block at rest density
+    EXPECT_LT(max_err, 1.0) << solver;
+    EXPECT_EQ(std::stol(c[14]), 0L) << solver;  // no particle outside the container
+  }
+  // The per-phase table of the same runs.
+  EXPECT_NE(r.out.find("### Dam break phases"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| dambreak-wcsph | cpu |"), std::string::npos) << r.out;
+}
+
 TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
   const fftest::TempDir d("bench_bad");
   struct Case {
@@ -195,6 +248,8 @@ TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
       {"bench --steps 0", "", "--steps"},
       {"bench --plot", "", "--plot"},
       {"bench --budget nan", "", "--budget"},
+      {"bench --dambreak --seconds 0", "", "--seconds"},
+      {"bench --dambreak --solver pcisph", "", "--solver"},
       {"bench --table1 --backend cpu --csv '" + (d / "no" / "such" / "dir.csv").string() + "'", "",
        "dir.csv"},
   };

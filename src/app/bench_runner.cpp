@@ -24,19 +24,8 @@ PhaseStats summarise(std::vector<double>& v) {
   return s;
 }
 
-BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, int steps) {
-  if (steps < 1) throw Error("bench: --steps must be at least 1");
-  const auto t0 = std::chrono::steady_clock::now();
-  std::string note;
-  auto backend = makeBackend(b.kind, b.device, b.threads, &note);
-  BenchResult r;
-  r.scene = c.name;
-  r.backend = backend->name();
-  r.device = backend->device();
-  Simulation sim(c.scene, std::move(backend));
-  sim.setProfiling(true);
-  sim.setMetricsEvery(b.metrics_every);
-  for (int i = 0; i < warmup; ++i) sim.step();
+void timeSteps(Simulation& sim, int steps, BenchResult& r,
+               const std::function<void(const Simulation&)>& each) {
   constexpr size_t kPhases = size_t(Phase::Count);
   std::array<std::vector<double>, kPhases> samples;
   std::vector<double> totals;
@@ -57,18 +46,36 @@ BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, 
       total += sim.lastStepMs()[p];
     }
     totals.push_back(total);
+    r.sum_ms += total;
     substeps += sim.metrics().substeps;
+    if (each) each(sim);
   }
   for (size_t p = 0; p < kPhases; ++p) r.phase[p] = summarise(samples[p]);
   r.total = summarise(totals);
   r.steps = steps;
   r.mean_substeps = substeps / double(steps);
-  r.fluid = c.fluid;
   r.control = sim.metrics().control_count;
   r.memory_bytes = sim.backend().memoryBytes();
   r.final_iou = sim.metrics().iou;
   if (r.steps_with > 0) r.reads_with /= r.steps_with, r.waits_with /= r.steps_with;
   if (r.steps_without > 0) r.reads_without /= r.steps_without, r.waits_without /= r.steps_without;
+}
+
+BenchResult runBenchCase(const BenchCase& c, const BenchBackend& b, int warmup, int steps) {
+  if (steps < 1) throw Error("bench: --steps must be at least 1");
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string note;
+  auto backend = makeBackend(b.kind, b.device, b.threads, &note);
+  BenchResult r;
+  r.scene = c.name;
+  r.backend = backend->name();
+  r.device = backend->device();
+  Simulation sim(c.scene, std::move(backend));
+  sim.setProfiling(true);
+  sim.setMetricsEvery(b.metrics_every);
+  for (int i = 0; i < warmup; ++i) sim.step();
+  timeSteps(sim, steps, r, nullptr);
+  r.fluid = c.fluid;
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -8,6 +8,7 @@
 
 #include "app/bench_cases.h"
 #include "sim/backend.h"
+#include "sim/simulation.h"
 
 namespace ff::app {
 
@@ -38,10 +39,16 @@ struct BenchResult {
   // (Backend::hostSyncs: blocking reads, queue waits), and how many of each.
   double reads_with = 0.0, waits_with = 0.0, reads_without = 0.0, waits_without = 0.0;
   int steps_with = 0, steps_without = 0;
+  double sum_ms = 0.0;  // the timed steps' phases, summed
 };
 
 // Median, minimum and maximum of the samples (which it reorders).
 PhaseStats summarise(std::vector<double>& samples);
+
+// Runs `steps` timed steps of `sim` into r (phases, total, substeps, host
+// syncs, memory); `each`, when set, sees the simulation after every step.
+void timeSteps(Simulation& sim, int steps, BenchResult& r,
+               const std::function<void(const Simulation&)>& each);
 
 // Runs `warmup` untimed steps and `steps` timed ones.
 BenchResult runBenchCase(const BenchCase& bench_case, const BenchBackend& backend, int warmup, int steps);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/bench_cases.h"
+#include "app/bench_dambreak.h"
 #include "app/bench_report.h"
 #include "app/bench_runner.h"
 #include "app/bench_soak.h"
@@ -27,7 +28,10 @@ namespace ff::app {
 namespace {
 
 struct BenchOptions {
-  bool table1 = false, fluid_sweep = false, control_sweep = false;
+  bool table1 = false, fluid_sweep = false, control_sweep = false, dambreak = false;
+  std::string solver = "all";  // --dambreak: wcsph, dfsph or all
+  double seconds = 1.0;        // --dambreak: simulated seconds
+  bool quick = false;          // --dambreak: one small block
   std::string backend = "all";
   int device = -1;
   int threads = 0;
@@ -85,6 +89,10 @@ void validate(const BenchOptions& o) {
   if (o.threads < 0) throw Error("--threads: must be >= 0");
   if (o.max_fluid < 1000) throw Error("--max-fluid: must be at least 1000");
   if (o.max_control < 100) throw Error("--max-control: must be at least 100");
+  if (!(o.seconds > 0.0) || o.seconds > 600.0)
+    throw Error("--seconds: must be a number of simulated seconds in (0, 600]");
+  if (o.solver != "all" && o.solver != "wcsph" && o.solver != "dfsph")
+    throw Error("--solver: '" + o.solver + "' is not one of all, wcsph, dfsph");
   if (!(o.budget_s > 0.0)) throw Error("--budget: must be a positive number of seconds");
   if (o.plot && o.csv.empty()) throw Error("--plot: give --csv FILE too (the plots go next to it)");
   if (!o.csv.empty()) {
@@ -200,10 +208,44 @@ int runStabilitySweep(const BenchOptions& o) {
   return rc;
 }
 
+// --dambreak: every solver asked for on every backend, 12k and 100k.
+void runDambreaks(const BenchOptions& o, const std::vector<BenchBackend>& backends) {
+  std::vector<std::string> solvers;
+  for (const char* k : {"wcsph", "dfsph"})
+    if (o.solver == "all" || o.solver == k) solvers.push_back(k);
+  std::vector<DambreakResult> out;
+  for (const std::array<int, 3>& size : dambreakSizes(o.max_fluid, o.quick))
+    for (const std::string& k : solvers)
+      for (const BenchBackend& b : backends) {
+        std::fprintf(stderr, "bench: dam break, %d fluid, %s on %s ...", size[0] * size[1] * size[2],
+                     k.c_str(), b.kind.c_str());
+        std::fflush(stderr);
+        out.push_back(runDambreak(size, k, b, o.seconds));
+        const DambreakResult& d = out.back();
+        if (d.skipped.empty())
+          std::fprintf(stderr, " %.2f s per simulated s (%s)\n", d.wall_per_sim_s, d.timing.device.c_str());
+        else
+          std::fprintf(stderr, " not run: %s\n", d.skipped.c_str());
+      }
+  printDambreak(stdout, out);
+  std::vector<BenchResult> timed;
+  for (const DambreakResult& d : out)
+    if (d.skipped.empty()) timed.push_back(d.timing);
+  printMarkdown(stdout, "Dam break phases", timed);
+  if (!o.csv.empty()) writeBenchCsv(o.csv, timed);
+}
+
 int runBench(BenchOptions o) {
   validate(o);
   if (o.soak) return runSoaks(o);
   if (o.stability) return runStabilitySweep(o);
+  if (o.dambreak) {
+    if (o.threads > 0) omp_set_num_threads(o.threads);
+    std::printf("flowform bench --dambreak: %d OpenMP threads, %g simulated s per run\n",
+                o.threads > 0 ? o.threads : omp_get_max_threads(), o.seconds);
+    runDambreaks(o, chooseBackends(o));
+    return 0;
+  }
   if (!o.table1 && !o.fluid_sweep && !o.control_sweep) o.table1 = o.fluid_sweep = o.control_sweep = true;
   if (o.threads > 0) omp_set_num_threads(o.threads);
   const std::vector<BenchBackend> backends = chooseBackends(o);
@@ -238,6 +280,14 @@ std::function<int()> addBenchCommand(CLI::App& app) {
   cmd->add_flag("--fluid-sweep", o->fluid_sweep, "Time 12k .. --max-fluid fluid particles");
   cmd->add_flag("--control-sweep", o->control_sweep,
                 "Time 500 .. --max-control control particles at 12k fluid");
+  cmd->add_flag(
+      "--dambreak", o->dambreak,
+      "Instead: uncontrolled dam breaks of 12k and 100k fluid particles (up to --max-fluid) on each "
+      "solver and backend, from rest over --seconds: wall s per simulated s, ms per frame step, "
+      "substeps, solver iterations, density error");
+  cmd->add_option("--solver", o->solver, "--dambreak: wcsph, dfsph or all (default)");
+  cmd->add_option("--seconds", o->seconds, "--dambreak: simulated seconds per run (default 1)");
+  cmd->add_flag("--quick", o->quick, "--dambreak: one 1.6k block instead (a check, not a benchmark)");
   cmd->add_option("--backend", o->backend,
                   "all (default), cpu or opencl (every OpenCL device unless --device)");
   cmd->add_option("--device", o->device, "OpenCL device index (see `flowform devices`)");

@@ -13,10 +13,11 @@
 namespace ff::app {
 
 SceneDesc dambreakScene(int nx, int ny, int nz, const std::string& solver) {
+  const PressureSolverKind kind = solverByName(solver);
   SceneDesc s;
   s.preset = solver == "dfsph" ? "water" : "paper";
   s.params = presetParams(s.preset);
-  s.params.fluid.solver = solverByName(solver);
+  s.params.fluid.solver = kind;
   s.name = "dambreak-" + solver;
   s.source = "<flowform bench --dambreak>";
   const float sp = s.params.fluid.restSpacing();

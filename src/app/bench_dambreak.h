@@ -39,10 +39,11 @@ struct DambreakResult {
   long escaped = 0;                  // particles outside the container at the end
 };
 
-// Runs one dam break with the solver called `solver` on `backend`: one untimed frame step (kernel compilation
-// on OpenCL), then `sim_seconds` of timed frame steps. A solver the backend
-// cannot run comes back with `skipped` set (the backend's own message).
-DambreakResult runDambreak(const std::array<int, 3>& size, PressureSolverKind solver,
+// Runs one dam break with the solver called `solver` on `backend`: one
+// untimed frame step (kernel compilation on OpenCL), then `sim_seconds` of
+// timed frame steps. A solver the backend cannot run (or this build lacks)
+// comes back with `skipped` set (the message).
+DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& solver,
                            const BenchBackend& backend, double sim_seconds);
 
 // The markdown table of the results (skipped ones listed below it).

@@ -230,7 +230,6 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
 }
 
 bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& c, float dt) {
-  (void)c;  // the walls are in the gradients of computeDensity
   const long n = long(f.size());
   if (alpha_.size() != size_t(n)) throw Error("dfsph: the pressure phase ran before the density phase");
   if (n == 0) return true;
@@ -244,11 +243,18 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   // Divergence-free solve on the velocities of the last substep.
   last_div_ =
       iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, kv_);
-  // Every other acceleration of the substep, then the constant-density solve.
+  // Every other acceleration of the substep and the walls' support in the
+  // pressure gradient it causes, then the constant-density solve.
+  float lo[3], hi[3];
+  box(c, lo, hi);
+  const float spacing = vol_spacing_, H = vol_h_, inv_h = 1.0f / H, vol = vol_;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const size_t q = size_t(i);
-    ux_[q] += dt * f.ax[q], uy_[q] += dt * f.ay[q], uz_[q] += dt * f.az[q];
+    const float pos[3] = {s.x[q], s.y[q], s.z[q]}, acc[3] = {f.ax[q], f.ay[q], f.az[q]};
+    float sup[3];
+    ff_dfsph_wall_support(pos, lo, hi, spacing, vol, H, inv_h, acc, sup);
+    ux_[q] += dt * (acc[0] + sup[0]), uy_[q] += dt * (acc[1] + sup[1]), uz_[q] += dt * (acc[2] + sup[2]);
   }
   last_dens_ = iterate(f, p, true, dt, double(p.density_tolerance), 2, kWarmStart * ratio * ratio, kd_);
   // The accelerations that take v to the solved velocities, and the pressure

@@ -21,8 +21,12 @@
 #   bench_*      flowform bench --table1, and --fluid-sweep up to --max-fluid
 #                (default 1000000), OpenCL only, CSV
 # A stage that would pass the budget is cut by `timeout` (exit 124).
+# On a CPU OpenCL device (PoCL: a test of the script, not of a GPU) the
+# defaults shrink so that the whole script fits the budget there too: runs of
+# 1 s (--seconds) and a Table 1 bench of 50 steps (--steps); options given
+# explicitly win. summary.txt says which were used.
 set -u
-out="gpu_check_$(date -u +%Y%m%dT%H%M%SZ)" budget=480 seconds=4 max_fluid=1000000 steps=200 device=""
+out="gpu_check_$(date -u +%Y%m%dT%H%M%SZ)" budget=480 seconds="" max_fluid=1000000 steps="" device="" dev_index=""
 while [ $# -gt 0 ]; do
   case $1 in
     --out) out=$2; shift 2 ;;
@@ -30,7 +34,7 @@ while [ $# -gt 0 ]; do
     --seconds) seconds=$2; shift 2 ;;
     --max-fluid) max_fluid=$2; shift 2 ;;
     --steps) steps=$2; shift 2 ;;
-    --device) device="--device $2"; shift 2 ;;
+    --device) device="--device $2" dev_index=$2; shift 2 ;;
     *) echo "gpu_check: unknown option $1 (see the header of bench/gpu_check.sh)"; exit 2 ;;
   esac
 done
@@ -67,6 +71,22 @@ stage() {
   echo "$name: exit $rc, $(($(date +%s) - t0)) s (cap $cap s)" | tee -a "$out/summary.txt"
 }
 fl=$bin/flowform
+# The device the OpenCL stages use: --device N, else the first GPU, else
+# device 0 (as flowform picks it); its type from `flowform devices`.
+dev_types=$("$fl" devices 2>/dev/null | sed -n 's/^  device \([0-9]*\): .*\[\([A-Z]*\)\].*/\1 \2/p')
+if [ -n "$dev_index" ]; then
+  dev_type=$(echo "$dev_types" | awk -v d="$dev_index" '$1 == d {print $2}')
+elif echo "$dev_types" | grep -q ' GPU$'; then
+  dev_type=GPU
+else
+  dev_type=$(echo "$dev_types" | awk 'NR == 1 {print $2}')
+fi
+if [ "$dev_type" = CPU ]; then
+  seconds=${seconds:-1} steps=${steps:-50}
+else
+  seconds=${seconds:-4} steps=${steps:-200}
+fi
+echo "device type ${dev_type:-unknown}: runs of $seconds s, Table 1 bench of $steps steps, budget $budget s" | tee -a "$out/summary.txt"
 has_bunny() {
   for d in $(echo "$FLOWFORM_MESH_PATH" | tr ':' ' '); do [ -f "$d/bunny.obj" ] && return 0; done
   return 1
@@ -78,11 +98,11 @@ has_bunny() {
   stage phases 180 env FLOWFORM_CL_POISON=1 "$bin/flowform_tests" --gtest_filter='OpenClPhases.*:OpenClPadding.*:OpenClRun.*'
   for k in scalar lanes; do
     if has_bunny; then
-      stage "run_bunny_$k" 60 "$fl" run scenes/bunny.json --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/bunny_$k.csv"
+      stage "run_bunny_$k" 90 "$fl" run scenes/bunny.json --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/bunny_$k.csv"
     else
       echo "run_bunny_$k: skipped (no bunny.obj on FLOWFORM_MESH_PATH)" | tee -a "$out/summary.txt"
     fi
-    stage "run_default_$k" 60 "$fl" run --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/default_$k.csv"
+    stage "run_default_$k" 90 "$fl" run --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/default_$k.csv"
   done
   stage bench_table1 120 "$fl" bench --table1 --backend opencl $device --steps "$steps" --warmup 20 --csv "$out/bench_table1.csv"
   left=$((budget - ($(date +%s) - start) - 10))

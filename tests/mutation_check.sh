@@ -43,6 +43,7 @@ feedback_off_opencl|kernels/shape_matching.cl|s|^\( *\)v = ff_feedback_velocity(
 
 mkdir -p "$scratch/src" "$scratch/build"
 status=0
+summary=
 while IFS='|' read -r name file expr; do
   [ -n "$name" ] || continue
   [ -z "$only" ] || [ "$only" = "$name" ] || continue
@@ -68,14 +69,22 @@ while IFS='|' read -r name file expr; do
   failed=$(grep -E '^\[  FAILED  \] [A-Za-z0-9_./]+ \([0-9]+ ms\)' "$log" || true)
   if [ -z "$failed" ]; then
     echo "   NOT CAUGHT: no test failed"
+    summary="$summary
+$name: NOT CAUGHT"
     status=1
   else
     echo "$failed" | sed 's/^\[  FAILED  \]/   failed:/'
     fast=$(echo "$failed" | sed -E 's/.*\(([0-9]+) ms\)/\1/' | awk '$1 < 1000' | wc -l)
     echo "   $fast of them in under 1 s"
+    # The fast ones, "Suite.Test (N ms)", for the summary.
+    fast_names=$(echo "$failed" | sed -E 's/^\[  FAILED  \] //' |
+      awk '{ms = $2; gsub(/\(/, "", ms); if (ms + 0 < 1000) printf "%s%s %s ms)", (n++ ? ", " : ""), $1, $2}')
+    summary="$summary
+$name: caught by ${fast_names:-no test under 1 s}"
     [ "$fast" -gt 0 ] || status=1
   fi
 done <<EOF
 $mutations
 EOF
+echo "== summary (the tests under 1 s that each change makes fail):$summary"
 exit $status

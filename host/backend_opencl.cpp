@@ -17,7 +17,9 @@ OpenClBackend::Impl::Impl(int device_index)
   control_scale_by_lane = makeKernel(program, "control_scale_by_lane", ctx, 256, 4 * sizeof(float));
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
-  control_recapture_centre = makeKernel(program, "control_recapture_centre", ctx);
+  control_recapture_fade = makeKernel(program, "control_recapture_fade", ctx);
+  recapture_seed = makeKernel(program, "recapture_seed", ctx);
+  recapture_flood = makeKernel(program, "recapture_flood", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
   forces_lanes = makeKernel(program, "forces_lanes", ctx, kLaneGroupCap);
   pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
@@ -271,13 +273,13 @@ size_t OpenClBackend::memoryBytes() const {
     for (const DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k], &d.id[k]})
       bytes += b->capacity();
   for (const DeviceBuffer* b :
-       {&d.rho,      &d.p,          &d.ax,      &d.ay,         &d.az,      &d.cx,       &d.cy,
-        &d.cz,       &d.cvx,        &d.cvy,     &d.cvz,        &d.x0,      &d.y0,       &d.z0,
-        &d.s,        &d.ux,         &d.uy,      &d.uz,         &d.gx,      &d.gy,       &d.gz,
-        &d.sx,       &d.sy,         &d.sz,      &d.ss,         &d.svx,     &d.svy,      &d.svz,
-        &d.cl_start, &d.cl_members, &d.rest_cx, &d.rest_cy,    &d.rest_cz, &d.of_start, &d.of,
-        &d.q,        &d.com_x,      &d.com_y,   &d.com_z,      &d.ccv_x,   &d.ccv_y,    &d.ccv_z,
-        &d.inside,   &d.rcentre,    &d.reach,   &d.controlled, &d.partial, &d.clamps,   &d.bad})
+       {&d.rho,     &d.p,        &d.ax,     &d.ay,    &d.az,        &d.cx,         &d.cy,      &d.cz,
+        &d.cvx,     &d.cvy,      &d.cvz,    &d.x0,    &d.y0,        &d.z0,         &d.s,       &d.ux,
+        &d.uy,      &d.uz,       &d.gx,     &d.gy,    &d.gz,        &d.sx,         &d.sy,      &d.sz,
+        &d.ss,      &d.svx,      &d.svy,    &d.svz,   &d.cl_start,  &d.cl_members, &d.rest_cx, &d.rest_cy,
+        &d.rest_cz, &d.of_start, &d.of,     &d.q,     &d.com_x,     &d.com_y,      &d.com_z,   &d.ccv_x,
+        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.rfade, &d.rseeds[0], &d.rseeds[1],  &d.reach,   &d.controlled,
+        &d.partial, &d.clamps,   &d.bad})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
 }
@@ -343,6 +345,14 @@ OpenClBackend::GridSnapshot OpenClBackend::readGrid(GridKind kind) {
     download(d_->queue(), g.start, g.geom.cells() + 1, s.start);
     download(d_->queue(), g.order, g.n, s.order);
     return s;
+  });
+}
+
+std::vector<uint32_t> OpenClBackend::readRecaptureField() {
+  return clGuard("reading the recapture's field", [&] {
+    std::vector<uint32_t> seeds;
+    if (rfield_cells_ > 0) download(d_->queue(), d_->rseeds[0], rfield_cells_, seeds);
+    return seeds;
   });
 }
 

@@ -69,6 +69,9 @@ class OpenClBackend : public Backend {
     std::vector<uint32_t> start, order;
   };
   GridSnapshot readGrid(GridKind kind);
+  // The recapture's field of targets of the last control forces phase
+  // (sorted positions in the control grid's order; empty if it never ran).
+  std::vector<uint32_t> readRecaptureField();
   double shapeMatchingClock() const { return clock_; }
   // How the neighbour phases (density, forces, control forces) map particles
   // to work-items: one each (Scalar: for GPUs, which want many work-items) or
@@ -93,7 +96,8 @@ class OpenClBackend : public Backend {
   size_t n_ = 0;        // fluid particles
   ControlSet control_;  // rest shape and clusters; positions and velocities live on the device
   size_t nc_ = 0, nclusters_ = 0;
-  double clock_ = 0.0;  // shape-matching time not yet consumed
+  size_t rfield_cells_ = 0;  // cells of the recapture's field (rseeds[0]) after the last control forces
+  double clock_ = 0.0;       // shape-matching time not yet consumed
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;
   bool masked_ = false;  // setControlledFluid gave a mask (else all the fluid is controlled)

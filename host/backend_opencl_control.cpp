@@ -1,5 +1,8 @@
 // backend_opencl_control.cpp - the control phases of the OpenCL backend:
 // control scale, control forces and shape matching (Controller's phases).
+#include <utility>
+
+#include "control/recapture_field.h"
 #include "ff_control.h"
 #include "ff_sph.h"
 #include "host/backend_opencl.h"
@@ -52,10 +55,27 @@ void OpenClBackend::applyControlForces(float dt) {
     const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
     const float* g = params_.fluid.gravity;
     const DeviceGrid& cg = d.control_r;
-    // Recapture (as Controller::addForces): the centre of the unfilled control particles, then the forces.
-    d.rcentre.ensure(d.ctx.context(), 4 * sizeof(float));
-    launch(d.queue(), d.control_recapture_centre, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
-           cl_uint(nc_), cl_int(cp.recapture > 0.0f ? 1 : 0), d.rcentre.get());
+    // Recapture (as Controller::addForces): its fade, then its field of
+    // targets (seeded, flooded into rseeds[0]), then the forces.
+    d.rfade.ensure(d.ctx.context(), sizeof(float));
+    launch(d.queue(), d.control_recapture_fade, 1, d.s.get(), cl_uint(nc_),
+           cl_int(cp.recapture > 0.0f ? 1 : 0), d.rfade.get());
+    const int gn[3] = {cg.geom.nx, cg.geom.ny, cg.geom.nz};
+    const float go[3] = {cg.geom.ox, cg.geom.oy, cg.geom.oz};
+    const RecaptureFieldGeom fg = recaptureFieldGeom(gn, go, cg.geom.cell);
+    rfield_cells_ = fg.cells();
+    for (DeviceBuffer& b : d.rseeds) b.ensure(d.ctx.context(), rfield_cells_ * sizeof(cl_uint));
+    if (cp.recapture > 0.0f) {  // else the fade is 0 and the forces never read the field
+      launch(d.queue(), d.recapture_seed, rfield_cells_, cg.start.get(), d.sx.get(), d.sy.get(), d.sz.get(),
+             d.ss.get(), f4(go[0], go[1], go[2], cg.geom.cell), cg.geom.dims(),
+             i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rseeds[0].get());
+      for (int step : recaptureFloodSteps(fg)) {
+        launch(d.queue(), d.recapture_flood, rfield_cells_, d.rseeds[0].get(), d.sx.get(), d.sy.get(),
+               d.sz.get(), cl_int(step), f4(fg.o[0], fg.o[1], fg.o[2], fg.fcell),
+               i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rseeds[1].get());
+        std::swap(d.rseeds[0], d.rseeds[1]);
+      }
+    }
     const cl::Buffer& mask = masked_ ? d.controlled.get() : d.reach.get();  // unread without a mask
     const cl_float4 rparams = f4(cp.recaptureSpeed(g), cp.recaptureRate(g), r, 0.0f);
     ClKernel& k = lanes_ ? d.control_forces_lanes : d.control_forces;
@@ -63,8 +83,10 @@ void OpenClBackend::applyControlForces(float dt) {
            d.rho.get(), cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(),
            d.svz.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
            cp.pullAttraction(g), cp.pullVelocity(g), cp.gravity_compensation, pull_mode, unit_scale,
-           f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.id[d.cur].get(), mask, cl_int(masked_ ? 1 : 0),
-           rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(), d.bad.get(), cl_int(tag));
+           f4(g[0], g[1], g[2], 0.0f), dt, d.rfade.get(), d.rseeds[0].get(),
+           f4(fg.o[0], fg.o[1], fg.o[2], fg.inv_fcell), i4(fg.m[0], fg.m[1], fg.m[2], 0), d.id[d.cur].get(),
+           mask, cl_int(masked_ ? 1 : 0), rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(),
+           d.bad.get(), cl_int(tag));
     endPhase();
   });
 }

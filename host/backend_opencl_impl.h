@@ -19,8 +19,9 @@ struct OpenClBackend::Impl {
   cl::Program program;
   GridBuilder grids;
   ClKernel reorder, density, forces, pressure_wcsph, integrate;
-  ClKernel control_scale, control_gather, control_forces, control_recapture_centre, sm_frames, sm_particles;
-  ClKernel control_scale_by_lane;  // 8 work-items per control particle (GPUs)
+  ClKernel control_scale, control_gather, control_forces, control_recapture_fade, sm_frames, sm_particles;
+  ClKernel recapture_seed, recapture_flood;  // the recapture's field of targets (recapture_field.cl)
+  ClKernel control_scale_by_lane;            // 8 work-items per control particle (GPUs)
   ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
       control_forces_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;      // 8 voxels per work-item
@@ -36,7 +37,8 @@ struct OpenClBackend::Impl {
   // Control particles (fixed order) and their per-step fields.
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
-  DeviceBuffer rcentre;                        // the recapture's centre (xyz) and fade (w)
+  DeviceBuffer rfade;                          // the recapture's fade (one float)
+  DeviceBuffer rseeds[2];                      // the recapture's field of targets and its flooding scratch
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;

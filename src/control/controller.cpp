@@ -5,6 +5,7 @@
 
 #include "control/shape_matching.h"
 #include "ff_control.h"
+#include "ff_recapture_field.h"
 #include "ff_sph.h"
 #include "parallel/parallel_grain.h"
 #include "parallel/simd8.h"
@@ -180,15 +181,14 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
               gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
   const float full_at = ff_control_full_coverage(cp_volume, r, coef);
-  // Recapture: the centre of the unfilled control particles and its fade.
-  float ucx = 0.0f, ucy = 0.0f, ucz = 0.0f, cw = 0.0f, uw = 0.0f;
-  for (size_t i = 0; i < n; ++i) {
-    const float w = ff_recapture_centre_weight(fields_.s[i]);
-    ucx += w * set_.x[i], ucy += w * set_.y[i], ucz += w * set_.z[i], cw += w;
-    uw += ff_recapture_weight(fields_.s[i]);
-  }
-  const ff_float3 ucentre = FF_F3(ucx / cw, ucy / cw, ucz / cw);
+  // Recapture: its fade from the unfilled weight, and where it aims each
+  // fluid particle (the nearest unfilled control particle, by rfield_).
+  float uw = 0.0f;
+  for (size_t i = 0; i < n; ++i) uw += ff_recapture_weight(fields_.s[i]);
   const float fade = cp_.recapture > 0.0f ? ff_recapture_fade(uw, float(n)) : 0.0f;
+  if (fade > 0.0f) rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data());
+  const RecaptureFieldGeom& rg = rfield_.geom();
+  const uint32_t* seeds = rfield_.seeds().data();
   const float rspeed = cp_.recaptureSpeed(f.gravity), rrate = cp_.recaptureRate(f.gravity);
   const ff_float3 grav = FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]);
   const std::vector<uint32_t>& groups = *sf.groups;
@@ -208,10 +208,13 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
       const bool recaptured = fade > 0.0f && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
       if (recaptured) {
         const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
-        if (k > 0.0f) {
+        const uint32_t t = k > 0.0f ? ff_recapture_target(seeds, sx_.data(), sy_.data(), sz_.data(), f.x[i],
+                                                          f.y[i], f.z[i], rg.m, rg.o, rg.inv_fcell)
+                                    : FF_RECAPTURE_NONE;
+        if (t != FF_RECAPTURE_NONE) {
           const ff_float3 a = ff_recapture_accel(
-              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), ucentre, grav, rspeed, rrate,
-              r, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
+              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), FF_F3(sx_[t], sy_[t], sz_[t]),
+              grav, rspeed, rrate, r, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
           ax[i] += a.x, ay[i] += a.y, az[i] += a.z;
         }
       }
@@ -277,7 +280,7 @@ size_t Controller::memoryBytes() const {
   for (const auto* v : {&set_.clusters.start, &set_.clusters.members, &set_.clusters.of_start,
                         &set_.clusters.of, &fluid_groups_})
     uints += v->capacity();
-  return reached_.capacity() + floats * sizeof(float) + uints * sizeof(uint32_t) +
+  return reached_.capacity() + rfield_.memoryBytes() + floats * sizeof(float) + uints * sizeof(uint32_t) +
          q_.capacity() * sizeof(ff_quat) + cp_grid_.memoryBytes() + fluid_grid_.memoryBytes();
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "control/control_set.h"
+#include "control/recapture_field.h"
 #include "core/params.h"
 #include "core/state_io.h"
 #include "ff_rotation.h"
@@ -88,6 +89,9 @@ class Controller {
   const std::vector<uint8_t>& reached() const { return reached_; }
   // The control particles' grid of the last addForces (cells of radius / FF_CONTROL_GRID_DIVISIONS).
   const UniformGrid& controlGrid() const { return cp_grid_; }
+  // The recapture's field of targets of the last addForces that recaptured
+  // (sorted positions in controlGrid()'s order; kernels/common/ff_recapture_field.h).
+  const RecaptureField& recaptureField() const { return rfield_; }
   size_t memoryBytes() const;
 
  private:
@@ -109,6 +113,7 @@ class Controller {
   double clock_ = 0.0;  // time not yet consumed by shape-matching steps
   bool sm_finite_ = true;
   UniformGrid cp_grid_, fluid_grid_;
+  RecaptureField rfield_;  // the recapture's targets over cp_grid_ (built while it acts)
   std::vector<uint32_t> fluid_groups_;
   std::vector<uint8_t> reached_;
   std::vector<float> fx_, fy_, fz_, fvx_, fvy_, fvz_;       // the fluid in fluid_grid_ order (no view grid)

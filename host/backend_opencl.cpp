@@ -25,6 +25,7 @@ OpenClBackend::Impl::Impl(int device_index)
   pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
   control_forces_lanes = makeKernel(program, "control_forces_lanes", ctx, kLaneGroupCap);
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
+  sm_frames_by_lane = makeKernel(program, "sm_cluster_frames_by_lane", ctx, 256, 15 * sizeof(float));
   sm_particles = makeKernel(program, "sm_particles", ctx);
   m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 4 * sizeof(float));
   m_coverage = makeKernel(program, "metrics_coverage", ctx, 256, sizeof(float));

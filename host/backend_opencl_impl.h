@@ -22,6 +22,7 @@ struct OpenClBackend::Impl {
   ClKernel control_scale, control_gather, control_forces, control_recapture_fade, sm_frames, sm_particles;
   ClKernel recapture_seed, recapture_flood;  // the recapture's field of targets (recapture_field.cl)
   ClKernel control_scale_by_lane;            // 8 work-items per control particle (GPUs)
+  ClKernel sm_frames_by_lane;                // 8 work-items per shape-matching cluster (GPUs)
   ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
       control_forces_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;      // 8 voxels per work-item

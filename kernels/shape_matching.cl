@@ -1,14 +1,18 @@
 // shape_matching.cl - phase "shape matching", one step of the shape-matching
 // clock (Controller::shapeMatchStep): per cluster the centre of mass, the
 // rotation (ff_extract_rotation, warm-started from the cluster's quaternion
-// kept on the device) and the mean velocity; per control particle the goal
-// (eq. 8), the damping and fluid feedback, eq. 7, integration and the
-// container clamp. Mirrors src/control/shape_matching.cpp and controller.cpp.
+// kept on the device) and the mean velocity, summed in the lane order of
+// ff_cluster_sums.h; per control particle the goal (eq. 8), the damping and
+// fluid feedback, eq. 7, integration and the container clamp. Mirrors src/control/shape_matching.cpp and
+// controller.cpp.
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_check.h"
+#include "ff_cluster_sums.h"
 #include "ff_control.h"
 #include "ff_rotation.h"
 
+// One work-item per cluster (the lanes kernels, for CPU devices): the lanes of
+// the cluster sums one after another, as the OpenMP backend runs them.
 __kernel void sm_cluster_frames(__global const float* x, __global const float* y, __global const float* z,
                                 __global const float* vx, __global const float* vy, __global const float* vz,
                                 __global const float* x0, __global const float* y0, __global const float* z0,
@@ -20,30 +24,63 @@ __kernel void sm_cluster_frames(__global const float* x, __global const float* y
   const uint c = get_global_id(0);
   if (c >= nc) return;
   const uint b = cl_start[c], e = cl_start[c + 1];
-  float mx = 0.0f, my = 0.0f, mz = 0.0f;
-  for (uint k = b; k < e; ++k) {
-    const uint p = cl_members[k];
-    mx += x[p], my += y[p], mz += z[p];
-  }
-  const float inv = 1.0f / (float)(e - b);
-  const ff_float3 com = FF_F3(mx * inv, my * inv, mz * inv);
+  const ff_float3 com = ff_cluster_mean3_of(x, y, z, cl_members, b, e);
   const ff_float3 rc = FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]);
-  ff_mat3 apq = ff_mat3_zero();
-  for (uint k = b; k < e; ++k) {
-    const uint p = cl_members[k];
-    const ff_float3 pp = FF_F3(x[p], y[p], z[p]) - com;
-    const ff_float3 qq = FF_F3(x0[p], y0[p], z0[p]) - rc;
-    apq = ff_mat3_add_outer(apq, pp, qq);
-  }
+  const ff_mat3 apq = ff_cluster_apq_of(x, y, z, x0, y0, z0, cl_members, b, e, com, rc);
   q[c] = ff_extract_rotation(apq, q[c], iterations);
   com_x[c] = com.x, com_y[c] = com.y, com_z[c] = com.z;
   // clusterVelocities: the mean velocity of the members, before this step moves them.
-  float sx = 0.0f, sy = 0.0f, sz = 0.0f;
-  for (uint k = b; k < e; ++k) {
-    const uint p = cl_members[k];
-    sx += vx[p], sy += vy[p], sz += vz[p];
+  const ff_float3 cv = ff_cluster_mean3_of(vx, vy, vz, cl_members, b, e);
+  cv_x[c] = cv.x, cv_y[c] = cv.y, cv_z[c] = cv.z;
+}
+
+// The same frames with 8 work-items per cluster (the scalar kernels, for GPUs,
+// where one work-item per cluster leaves most of the device idle): work-item
+// `lane` sums the members k = lane mod 8 (counted from the cluster's start),
+// the group combines the 8 lanes in local memory by ff_lane_sum8, every lane
+// takes the centre of mass from them, and lane 0 extracts the rotation. Work-
+// groups of a multiple of 8 work-items; `tmp` holds 15 floats per work-item.
+__kernel void sm_cluster_frames_by_lane(
+    __global const float* x, __global const float* y, __global const float* z, __global const float* vx,
+    __global const float* vy, __global const float* vz, __global const float* x0, __global const float* y0,
+    __global const float* z0, __global const uint* cl_start, __global const uint* cl_members,
+    __global const float* rest_cx, __global const float* rest_cy, __global const float* rest_cz, uint nc,
+    int iterations, __global float4* q, __global float* com_x, __global float* com_y, __global float* com_z,
+    __global float* cv_x, __global float* cv_y, __global float* cv_z, __local float* tmp) {
+  const uint c = get_global_id(0) / 8u, lane = get_local_id(0) & 7u, lid = get_local_id(0);
+  // The group's first lane of this cluster; positions sums at tmp[3 * lid],
+  // A_pq and velocity sums at tmp[3 * size + 12 * lid].
+  const uint l0 = lid - lane, size = get_local_size(0);
+  __local float* pos = tmp;
+  __local float* rest = tmp + 3u * size;
+  const uint b = c < nc ? cl_start[c] : 0u, e = c < nc ? cl_start[c + 1] : 0u;
+  const ff_float3 ps = ff_cluster_lane_sum3(x, y, z, cl_members, b, e, lane);
+  pos[3u * lid] = ps.x, pos[3u * lid + 1u] = ps.y, pos[3u * lid + 2u] = ps.z;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  ff_float3 lanes[8];
+  for (uint l = 0; l < 8u; ++l) {
+    __local const float* v = pos + 3u * (l0 + l);
+    lanes[l] = FF_F3(v[0], v[1], v[2]);
   }
-  cv_x[c] = sx * inv, cv_y[c] = sy * inv, cv_z[c] = sz * inv;
+  const ff_float3 com = c < nc ? ff_lanes_mean3(lanes, e - b) : FF_F3(0.0f, 0.0f, 0.0f);
+  const ff_float3 rc = c < nc ? FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]) : com;
+  const ff_mat3 a = ff_cluster_lane_apq(x, y, z, x0, y0, z0, cl_members, b, e, lane, com, rc);
+  const ff_float3 vs = ff_cluster_lane_sum3(vx, vy, vz, cl_members, b, e, lane);
+  const float mine[12] = {a.c0.x, a.c0.y, a.c0.z, a.c1.x, a.c1.y, a.c1.z,
+                          a.c2.x, a.c2.y, a.c2.z, vs.x,   vs.y,   vs.z};
+  for (uint k = 0; k < 12u; ++k) rest[12u * lid + k] = mine[k];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lane != 0u || c >= nc) return;
+  ff_mat3 m[8];
+  for (uint l = 0; l < 8u; ++l) {
+    __local const float* v = rest + 12u * (lid + l);
+    m[l].c0 = FF_F3(v[0], v[1], v[2]), m[l].c1 = FF_F3(v[3], v[4], v[5]), m[l].c2 = FF_F3(v[6], v[7], v[8]);
+    lanes[l] = FF_F3(v[9], v[10], v[11]);
+  }
+  q[c] = ff_extract_rotation(ff_lanes_total_mat3(m), q[c], iterations);
+  com_x[c] = com.x, com_y[c] = com.y, com_z[c] = com.z;
+  const ff_float3 cv = ff_lanes_mean3(lanes, e - b);
+  cv_x[c] = cv.x, cv_y[c] = cv.y, cv_z[c] = cv.z;
 }
 
 // Goals (kept for reading back), then the velocity update and integration.

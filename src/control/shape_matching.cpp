@@ -1,5 +1,6 @@
 #include "control/shape_matching.h"
 
+#include "ff_cluster_sums.h"
 #include "parallel/parallel_grain.h"
 
 namespace ff {
@@ -12,22 +13,13 @@ void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<f
   cx.resize(size_t(nc)), cy.resize(size_t(nc)), cz.resize(size_t(nc));
 #pragma omp parallel for schedule(dynamic, 16)
   for (long c = 0; c < nc; ++c) {
+    // The sums in the kernels' lane order (ff_cluster_sums.h).
     const uint32_t b = cl.start[c], e = cl.start[c + 1];
-    float mx = 0, my = 0, mz = 0;
-    for (uint32_t k = b; k < e; ++k) {
-      uint32_t p = cl.members[k];
-      mx += set.x[p], my += set.y[p], mz += set.z[p];
-    }
-    const float inv = 1.0f / float(e - b);
-    ff_float3 com = FF_F3(mx * inv, my * inv, mz * inv);
-    ff_float3 rc = FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c]);
-    ff_mat3 apq = ff_mat3_zero();
-    for (uint32_t k = b; k < e; ++k) {
-      uint32_t p = cl.members[k];
-      ff_float3 pp = FF_F3(set.x[p], set.y[p], set.z[p]) - com;
-      ff_float3 qq = FF_F3(set.x0[p], set.y0[p], set.z0[p]) - rc;
-      apq = ff_mat3_add_outer(apq, pp, qq);
-    }
+    const ff_float3 com =
+        ff_cluster_mean3_of(set.x.data(), set.y.data(), set.z.data(), cl.members.data(), b, e);
+    const ff_float3 rc = FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c]);
+    const ff_mat3 apq = ff_cluster_apq_of(set.x.data(), set.y.data(), set.z.data(), set.x0.data(),
+                                          set.y0.data(), set.z0.data(), cl.members.data(), b, e, com, rc);
     q[c] = ff_extract_rotation(apq, q[c], iterations);
     cx[c] = com.x, cy[c] = com.y, cz[c] = com.z;
   }
@@ -40,13 +32,9 @@ void clusterVelocities(const ControlSet& set, std::vector<float>& vx, std::vecto
   vx.resize(size_t(nc)), vy.resize(size_t(nc)), vz.resize(size_t(nc));
 #pragma omp parallel for schedule(static) if (nc > kParallelLightLoop)
   for (long c = 0; c < nc; ++c) {
-    float sx = 0, sy = 0, sz = 0;
-    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
-      const uint32_t p = cl.members[k];
-      sx += set.vx[p], sy += set.vy[p], sz += set.vz[p];
-    }
-    const float inv = 1.0f / float(cl.start[c + 1] - cl.start[c]);
-    vx[c] = sx * inv, vy[c] = sy * inv, vz[c] = sz * inv;
+    const ff_float3 v = ff_cluster_mean3_of(set.vx.data(), set.vy.data(), set.vz.data(), cl.members.data(),
+                                            cl.start[c], cl.start[c + 1]);
+    vx[c] = v.x, vy[c] = v.y, vz[c] = v.z;
   }
 }
 

@@ -2,9 +2,11 @@
 // backend. Phase "density": rho with the cubic spline and the analytic wall,
 // and each particle's factor alpha. Phase "pressure", per substep: a
 // divergence-free solve on the velocities, then, with every other
-// acceleration of the substep applied, a constant-density solve. Both are
-// relaxed Jacobi iterations warm-started from half of the last substep's
-// values. The formulas and per-particle bodies are ff_dfsph.h's.
+// acceleration of the substep applied, a constant-density solve. Both
+// iterate Jacobi increments alpha_i b_i >= 0 that change the velocities at
+// once (b is recomputed from the new velocities before the next one), and
+// both are warm-started from half of the last substep's k, scaled by the
+// change of dt. The formulas and per-particle bodies are ff_dfsph.h's.
 #pragma once
 #include <vector>
 

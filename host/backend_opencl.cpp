@@ -17,7 +17,7 @@ OpenClBackend::Impl::Impl(int device_index)
   control_scale_by_lane = makeKernel(program, "control_scale_by_lane", ctx, 256, 4 * sizeof(float));
   control_gather = makeKernel(program, "control_gather", ctx);
   control_forces = makeKernel(program, "control_forces", ctx);
-  control_recapture_fade = makeKernel(program, "control_recapture_fade", ctx);
+  control_recapture_centre = makeKernel(program, "control_recapture_centre", ctx);
   recapture_seed = makeKernel(program, "recapture_seed", ctx);
   recapture_flood = makeKernel(program, "recapture_flood", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
@@ -274,13 +274,14 @@ size_t OpenClBackend::memoryBytes() const {
     for (const DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k], &d.id[k]})
       bytes += b->capacity();
   for (const DeviceBuffer* b :
-       {&d.rho,     &d.p,        &d.ax,     &d.ay,    &d.az,        &d.cx,         &d.cy,      &d.cz,
-        &d.cvx,     &d.cvy,      &d.cvz,    &d.x0,    &d.y0,        &d.z0,         &d.s,       &d.ux,
-        &d.uy,      &d.uz,       &d.gx,     &d.gy,    &d.gz,        &d.sx,         &d.sy,      &d.sz,
-        &d.ss,      &d.svx,      &d.svy,    &d.svz,   &d.cl_start,  &d.cl_members, &d.rest_cx, &d.rest_cy,
-        &d.rest_cz, &d.of_start, &d.of,     &d.q,     &d.com_x,     &d.com_y,      &d.com_z,   &d.ccv_x,
-        &d.ccv_y,   &d.ccv_z,    &d.inside, &d.rfade, &d.rseeds[0], &d.rseeds[1],  &d.reach,   &d.controlled,
-        &d.partial, &d.clamps,   &d.bad})
+       {&d.rho,      &d.p,          &d.ax,        &d.ay,        &d.az,      &d.cx,         &d.cy,
+        &d.cz,       &d.cvx,        &d.cvy,       &d.cvz,       &d.x0,      &d.y0,         &d.z0,
+        &d.s,        &d.ux,         &d.uy,        &d.uz,        &d.gx,      &d.gy,         &d.gz,
+        &d.sx,       &d.sy,         &d.sz,        &d.ss,        &d.svx,     &d.svy,        &d.svz,
+        &d.cl_start, &d.cl_members, &d.rest_cx,   &d.rest_cy,   &d.rest_cz, &d.of_start,   &d.of,
+        &d.q,        &d.com_x,      &d.com_y,     &d.com_z,     &d.ccv_x,   &d.ccv_y,      &d.ccv_z,
+        &d.inside,   &d.rcentre,    &d.rseeds[0], &d.rseeds[1], &d.reach,   &d.controlled, &d.partial,
+        &d.clamps,   &d.bad})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
 }

@@ -55,15 +55,17 @@ void OpenClBackend::applyControlForces(float dt) {
     const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
     const float* g = params_.fluid.gravity;
     const DeviceGrid& cg = d.control_r;
-    // Recapture (as Controller::addForces): its fade, then its field of
-    // targets (seeded, flooded into rseeds[0]), then the forces.
-    d.rfade.ensure(d.ctx.context(), sizeof(float));
-    launch(d.queue(), d.control_recapture_fade, 1, d.s.get(), cl_uint(nc_),
-           cl_int(cp.recapture > 0.0f ? 1 : 0), d.rfade.get());
+    // Recapture (as Controller::addForces): its centre, fade and aim, then its
+    // field of targets (seeded, flooded into rseeds[0]; read only where the
+    // centre lies outside the shape), then the forces.
     const int gn[3] = {cg.geom.nx, cg.geom.ny, cg.geom.nz};
     const float go[3] = {cg.geom.ox, cg.geom.oy, cg.geom.oz};
     const RecaptureFieldGeom fg = recaptureFieldGeom(gn, go, cg.geom.cell);
     rfield_cells_ = fg.cells();
+    d.rcentre.ensure(d.ctx.context(), 5 * sizeof(float));
+    launch(d.queue(), d.control_recapture_centre, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
+           cl_uint(nc_), cl_int(cp.recapture > 0.0f ? 1 : 0), d.sx.get(), d.sy.get(), d.sz.get(),
+           cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, FF_CBRT(cp_volume), d.rcentre.get());
     for (DeviceBuffer& b : d.rseeds) b.ensure(d.ctx.context(), rfield_cells_ * sizeof(cl_uint));
     if (cp.recapture > 0.0f) {  // else the fade is 0 and the forces never read the field
       launch(d.queue(), d.recapture_seed, rfield_cells_, cg.start.get(), d.sx.get(), d.sy.get(), d.sz.get(),
@@ -83,7 +85,7 @@ void OpenClBackend::applyControlForces(float dt) {
            d.rho.get(), cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(),
            d.svz.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
            cp.pullAttraction(g), cp.pullVelocity(g), cp.gravity_compensation, pull_mode, unit_scale,
-           f4(g[0], g[1], g[2], 0.0f), dt, d.rfade.get(), d.rseeds[0].get(),
+           f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.rseeds[0].get(),
            f4(fg.o[0], fg.o[1], fg.o[2], fg.inv_fcell), i4(fg.m[0], fg.m[1], fg.m[2], 0), d.id[d.cur].get(),
            mask, cl_int(masked_ ? 1 : 0), rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(),
            d.bad.get(), cl_int(tag));

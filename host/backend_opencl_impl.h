@@ -19,7 +19,7 @@ struct OpenClBackend::Impl {
   cl::Program program;
   GridBuilder grids;
   ClKernel reorder, density, forces, pressure_wcsph, integrate;
-  ClKernel control_scale, control_gather, control_forces, control_recapture_fade, sm_frames, sm_particles;
+  ClKernel control_scale, control_gather, control_forces, control_recapture_centre, sm_frames, sm_particles;
   ClKernel recapture_seed, recapture_flood;  // the recapture's field of targets (recapture_field.cl)
   ClKernel control_scale_by_lane;            // 8 work-items per control particle (GPUs)
   ClKernel sm_frames_by_lane;                // 8 work-items per shape-matching cluster (GPUs)
@@ -38,8 +38,8 @@ struct OpenClBackend::Impl {
   // Control particles (fixed order) and their per-step fields.
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
-  DeviceBuffer rfade;                          // the recapture's fade (one float)
-  DeviceBuffer rseeds[2];                      // the recapture's field of targets and its flooding scratch
+  DeviceBuffer rcentre;    // the recapture's centre (xyz), fade and aim (control_forces.cl)
+  DeviceBuffer rseeds[2];  // the recapture's field of targets and its flooding scratch
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;

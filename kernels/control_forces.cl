@@ -27,21 +27,40 @@ __kernel void control_gather(__global const uint* order, uint nc, __global const
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
 }
 
-// The recapture's fade from the control particles' s, in their fixed order:
-// one work-item, as Controller::addForces sums them. enabled:
-// params.control.recapture > 0.
-__kernel void control_recapture_fade(__global const float* s, uint nc, int enabled, __global float* out) {
+// The recapture's centre (out[0..2]), fade (out[3]) and whether it aims at
+// the centre (out[4]: 1 where the centre lies within `spacing` of a control
+// particle, ff_recapture_among; else 0 and the field of targets), from the
+// control particles' positions and s in their fixed order: one work-item, as
+// Controller::addForces sums them. enabled: params.control.recapture > 0.
+// sx, sy, sz, start: the control particles in their grid's order, and the grid.
+__kernel void control_recapture_centre(__global const float* x, __global const float* y,
+                                       __global const float* z, __global const float* s, uint nc, int enabled,
+                                       __global const float* sx, __global const float* sy,
+                                       __global const float* sz, __global const uint* start, float4 geo,
+                                       int4 dims, float cell, float spacing, __global float* out) {
   if (get_global_id(0) != 0) return;
-  float uw = 0.0f;
-  for (uint i = 0; i < nc; ++i) uw += ff_recapture_weight(s[i]);
-  out[0] = enabled ? ff_recapture_fade(uw, (float)nc) : 0.0f;
+  float ucx = 0.0f, ucy = 0.0f, ucz = 0.0f, cw = 0.0f, uw = 0.0f;
+  for (uint i = 0; i < nc; ++i) {
+    const float w = ff_recapture_centre_weight(s[i]);
+    ucx += w * x[i], ucy += w * y[i], ucz += w * z[i], cw += w;
+    uw += ff_recapture_weight(s[i]);
+  }
+  const float c[3] = {ucx / cw, ucy / cw, ucz / cw};
+  const float fade = enabled ? ff_recapture_fade(uw, (float)nc) : 0.0f;
+  const float o3[3] = {geo.x, geo.y, geo.z};
+  const int n3[3] = {dims.x, dims.y, dims.z};
+  out[0] = c[0], out[1] = c[1], out[2] = c[2], out[3] = fade;
+  out[4] =
+      fade > 0.0f && ff_recapture_among(start, sx, sy, sz, c[0], c[1], c[2], spacing, o3, cell, geo.w, n3)
+          ? 1.0f
+          : 0.0f;
 }
 
 // The accelerations of fluid particle e from its sums over the control
 // particles: attraction fa, weight wsum and weighted velocity vs*, after the
 // recapture's; reached[e]: whether a control particle was within the radius
-// (wsum > 0). The recapture reads its fade (rfade, from
-// control_recapture_fade), its field of targets (seeds over the control
+// (wsum > 0). The recapture reads its centre, fade and aim (rcentre, from
+// control_recapture_centre), its field of targets (seeds over the control
 // particles sx, sy, sz: recapture_field.cl; fgeo = the field's origin and
 // inverse cell size, fdims its cells per axis), the controlled fluid by
 // identity (all of it when use_mask is 0) and rparams = (speed, relaxation
@@ -51,7 +70,7 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
                                   __global const float* vx, __global const float* vy,
                                   __global const float* vz, __global const float* rho, float cp_volume,
                                   float full_at, float wa, float wv, float gc, int pull_mode,
-                                  float unit_scale, float4 gravity, float dt, __global const float* rfade,
+                                  float unit_scale, float4 gravity, float dt, __global const float* rcentre,
                                   __global const uint* seeds, __global const float* sx,
                                   __global const float* sy, __global const float* sz, float4 fgeo, int4 fdims,
                                   __global const uint* id, __global const uchar* controlled, int use_mask,
@@ -59,18 +78,17 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
                                   __global uchar* reached, __global int* bad, int tag) {
   reached[e] = wsum > 0.0f ? 1 : 0;
   float bx = ax[e], by = ay[e], bz = az[e];
-  const float fade = rfade[0];
+  const float fade = rcentre[3];
   if (fade > 0.0f && (!use_mask || controlled[id[e]])) {
     const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
     const int m3[3] = {fdims.x, fdims.y, fdims.z};
     const float o3[3] = {fgeo.x, fgeo.y, fgeo.z};
-    const uint t = k > 0.0f ? ff_recapture_target(seeds, sx, sy, sz, x[e], y[e], z[e], m3, o3, fgeo.w)
-                            : FF_RECAPTURE_NONE;
-    if (t != FF_RECAPTURE_NONE) {
-      const ff_float3 a =
-          ff_recapture_accel(FF_F3(x[e], y[e], z[e]), FF_F3(vx[e], vy[e], vz[e]), FF_F3(sx[t], sy[t], sz[t]),
-                             FF_F3(gravity.x, gravity.y, gravity.z), rparams.x, rparams.y, rparams.z, dt, k,
-                             ff_recapture_weightless(wsum, cp_volume, full_at, fade));
+    ff_float3 c;
+    if (k > 0.0f && ff_recapture_aim(rcentre[4] != 0.0f, FF_F3(rcentre[0], rcentre[1], rcentre[2]), seeds, sx,
+                                     sy, sz, x[e], y[e], z[e], m3, o3, fgeo.w, &c)) {
+      const ff_float3 a = ff_recapture_accel(
+          FF_F3(x[e], y[e], z[e]), FF_F3(vx[e], vy[e], vz[e]), c, FF_F3(gravity.x, gravity.y, gravity.z),
+          rparams.x, rparams.y, rparams.z, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
       bx += a.x, by += a.y, bz += a.z;
       ax[e] = bx, ay[e] = by, az[e] = bz;
       if (!isfinite(bx) || !isfinite(by) || !isfinite(bz)) ff_report_nonfinite(bad, tag);
@@ -104,7 +122,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
                              __global const float* svx, __global const float* svy, __global const float* svz,
                              __global const uint* start, float4 geo, int4 dims, float cell, float radius,
                              float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
-                             float unit_scale, float4 gravity, float dt, __global const float* rfade,
+                             float unit_scale, float4 gravity, float dt, __global const float* rcentre,
                              __global const uint* seeds, float4 fgeo, int4 fdims, __global const uint* id,
                              __global const uchar* controlled, int use_mask, float4 rparams,
                              __global float* ax, __global float* ay, __global float* az,
@@ -138,7 +156,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
     }
   }
   control_forces_finish(e, fa, wsum, vsx, vsy, vsz, x, y, z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
-                        pull_mode, unit_scale, gravity, dt, rfade, seeds, sx, sy, sz, fgeo, fdims, id,
+                        pull_mode, unit_scale, gravity, dt, rcentre, seeds, sx, sy, sz, fgeo, fdims, id,
                         controlled, use_mask, rparams, ax, ay, az, reached, bad, tag);
 }
 
@@ -150,9 +168,10 @@ __kernel void control_forces_lanes(
     __global const float* svx, __global const float* svy, __global const float* svz,
     __global const uint* start, float4 geo, int4 dims, float cell, float radius, float cp_volume,
     float full_at, float wa, float wv, float gc, int pull_mode, float unit_scale, float4 gravity, float dt,
-    __global const float* rfade, __global const uint* seeds, float4 fgeo, int4 fdims, __global const uint* id,
-    __global const uchar* controlled, int use_mask, float4 rparams, __global float* ax, __global float* ay,
-    __global float* az, __global uchar* reached, __global int* bad, int tag) {
+    __global const float* rcentre, __global const uint* seeds, float4 fgeo, int4 fdims,
+    __global const uint* id, __global const uchar* controlled, int use_mask, float4 rparams,
+    __global float* ax, __global float* ay, __global float* az, __global uchar* reached, __global int* bad,
+    int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
@@ -185,6 +204,6 @@ __kernel void control_forces_lanes(
   for (uint l = 0; l < m; ++l)
     control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], x, y,
                           z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc, pull_mode, unit_scale, gravity,
-                          dt, rfade, seeds, sx, sy, sz, fgeo, fdims, id, controlled, use_mask, rparams, ax,
+                          dt, rcentre, seeds, sx, sy, sz, fgeo, fdims, id, controlled, use_mask, rparams, ax,
                           ay, az, reached, bad, tag);
 }

@@ -104,6 +104,13 @@ FF_FN float ff_recapture_weight(float s) {
   return FF_FMAX(0.0f, 2.0f * s - 1.0f);
 }
 
+/* The weight of a control particle in the recapture's centre: its unfilled
+ * weight, plus a little so that a filled shape still has a centre (its
+ * centroid). */
+FF_FN float ff_recapture_centre_weight(float s) {
+  return ff_recapture_weight(s) + 0.01f;
+}
+
 /* The recapture's strength from the unfilled weight u = sum_i
  * ff_recapture_weight(s_i) of nc control particles: full while at least a
  * tenth of the shape is unfilled, fading linearly to 0 as it fills, so that
@@ -131,8 +138,9 @@ FF_FN float ff_recapture_weightless(float wsum, float v_c, float full_at, float 
 }
 
 /* The recapture acceleration of a fluid particle at x with velocity v,
- * towards the control particle at c it aims at (ff_recapture_target, the
- * nearest unfilled one): the share kg of its
+ * towards the point c it aims at (the centre of the unfilled control
+ * particles where that lies among them, else the nearest unfilled control
+ * particle, ff_recapture_field.h): the share kg of its
  * gravity g is switched off (ff_recapture_weightless) and its velocity relaxes
  * with strength k (ff_recapture_strength; implicitly, at `rate` per second,
  * over dt) towards `speed` along c - x, slowing within `radius` of c. The dot

@@ -142,4 +142,47 @@ FF_FN uint ff_recapture_target(FF_GLOBAL const uint* seeds, FF_GLOBAL const floa
                               ff_cell_coord(pz, o[2], inv_fcell, m[2]), 1, m);
 }
 
+/* Whether the point (px, py, pz) lies among the control particles: one of
+ * them (sx, sy, sz, in the order of the grid with cell ranges `start`, origin
+ * o, cell size `cell`, inverse inv_cell, n cells per axis) within `dist` of it.
+ * The recapture aims at the centre of the unfilled control particles only
+ * where it does (inside the shape); elsewhere (a torus's hole) at the field. */
+FF_FN int ff_recapture_among(FF_GLOBAL const uint* start, FF_GLOBAL const float* sx,
+                             FF_GLOBAL const float* sy, FF_GLOBAL const float* sz, float px, float py,
+                             float pz, float dist, const float o[3], float cell, float inv_cell,
+                             const int n[3]) {
+  const float reach = ff_query_reach(dist, cell), d2max = dist * dist;
+  const float p[3] = {px, py, pz};
+  const int z0 = ff_cell_coord(pz - reach, o[2], inv_cell, n[2]),
+            z1 = ff_cell_coord(pz + reach, o[2], inv_cell, n[2]);
+  const int y0 = ff_cell_coord(py - reach, o[1], inv_cell, n[1]),
+            y1 = ff_cell_coord(py + reach, o[1], inv_cell, n[1]);
+  for (int z = z0; z <= z1; ++z)
+    for (int y = y0; y <= y1; ++y) {
+      uint b, e;
+      if (!ff_row_span(start, p, p, reach, y, z, o, cell, inv_cell, n, &b, &e)) continue;
+      for (uint k = b; k < e; ++k)
+        if (ff_recapture_d2(px, py, pz, sx[k], sy[k], sz[k]) <= d2max) return 1;
+    }
+  return 0;
+}
+
+/* Where the recapture aims the fluid particle at (px, py, pz): the centre of
+ * the unfilled control particles where that lies among them (at_centre, from
+ * ff_recapture_among), else the control particle ff_recapture_target names.
+ * Returns 0 (and leaves *aim) if there is none. */
+FF_FN int ff_recapture_aim(int at_centre, ff_float3 centre, FF_GLOBAL const uint* seeds,
+                           FF_GLOBAL const float* sx, FF_GLOBAL const float* sy, FF_GLOBAL const float* sz,
+                           float px, float py, float pz, const int m[3], const float o[3], float inv_fcell,
+                           ff_float3* aim) {
+  if (at_centre) {
+    *aim = centre;
+    return 1;
+  }
+  const uint t = ff_recapture_target(seeds, sx, sy, sz, px, py, pz, m, o, inv_fcell);
+  if (t == FF_RECAPTURE_NONE) return 0;
+  *aim = FF_F3(sx[t], sy[t], sz[t]);
+  return 1;
+}
+
 #endif /* FF_RECAPTURE_FIELD_H */

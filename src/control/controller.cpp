@@ -181,12 +181,25 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
               gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
   const float full_at = ff_control_full_coverage(cp_volume, r, coef);
-  // Recapture: its fade from the unfilled weight, and where it aims each
-  // fluid particle (the nearest unfilled control particle, by rfield_).
-  float uw = 0.0f;
-  for (size_t i = 0; i < n; ++i) uw += ff_recapture_weight(fields_.s[i]);
+  // Recapture: the centre of the unfilled control particles and its fade.
+  // It aims there where the centre lies among the control particles (within
+  // one spacing of one), else (a torus's hole) each fluid particle at its
+  // nearest unfilled control particle, by rfield_.
+  float ucx = 0.0f, ucy = 0.0f, ucz = 0.0f, cw = 0.0f, uw = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    const float w = ff_recapture_centre_weight(fields_.s[i]);
+    ucx += w * set_.x[i], ucy += w * set_.y[i], ucz += w * set_.z[i], cw += w;
+    uw += ff_recapture_weight(fields_.s[i]);
+  }
+  const ff_float3 ucentre = FF_F3(ucx / cw, ucy / cw, ucz / cw);
   const float fade = cp_.recapture > 0.0f ? ff_recapture_fade(uw, float(n)) : 0.0f;
-  if (fade > 0.0f) rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data());
+  const int gn[3] = {cp_grid_.nx(), cp_grid_.ny(), cp_grid_.nz()};
+  const float go[3] = {cp_grid_.originX(), cp_grid_.originY(), cp_grid_.originZ()};
+  const bool at_centre =
+      fade > 0.0f && ff_recapture_among(cp_grid_.cellStart().data(), sx_.data(), sy_.data(), sz_.data(),
+                                        ucentre.x, ucentre.y, ucentre.z, FF_CBRT(cp_volume), go,
+                                        cp_grid_.cellSize(), cp_grid_.invCellSize(), gn);
+  if (fade > 0.0f && !at_centre) rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data());
   const RecaptureFieldGeom& rg = rfield_.geom();
   const uint32_t* seeds = rfield_.seeds().data();
   const float rspeed = cp_.recaptureSpeed(f.gravity), rrate = cp_.recaptureRate(f.gravity);
@@ -208,13 +221,12 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
       const bool recaptured = fade > 0.0f && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
       if (recaptured) {
         const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
-        const uint32_t t = k > 0.0f ? ff_recapture_target(seeds, sx_.data(), sy_.data(), sz_.data(), f.x[i],
-                                                          f.y[i], f.z[i], rg.m, rg.o, rg.inv_fcell)
-                                    : FF_RECAPTURE_NONE;
-        if (t != FF_RECAPTURE_NONE) {
+        ff_float3 c;
+        if (k > 0.0f && ff_recapture_aim(at_centre, ucentre, seeds, sx_.data(), sy_.data(), sz_.data(),
+                                         f.x[i], f.y[i], f.z[i], rg.m, rg.o, rg.inv_fcell, &c)) {
           const ff_float3 a = ff_recapture_accel(
-              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), FF_F3(sx_[t], sy_[t], sz_[t]),
-              grav, rspeed, rrate, r, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
+              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), c, grav, rspeed, rrate, r, dt,
+              k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
           ax[i] += a.x, ay[i] += a.y, az[i] += a.z;
         }
       }

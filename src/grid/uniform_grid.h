@@ -42,6 +42,7 @@ class UniformGrid {
   int ny() const { return ny_; }
   int nz() const { return nz_; }
   float cellSize() const { return cell_; }
+  float invCellSize() const { return inv_cell_; }
   float originX() const { return ox_; }
   float originY() const { return oy_; }
   float originZ() const { return oz_; }

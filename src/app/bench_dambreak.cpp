@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/fluid_census.h"
 #include "core/error.h"
 #include "core/fluid_state.h"
 #include "host/backend_factory.h"
@@ -81,13 +82,7 @@ DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& so
   d.mean_density_error = derr / double(steps);
   FluidState end;
   sim->backend().readFluid(end);
-  const ContainerDesc& c = scene.container;
-  for (size_t i = 0; i < end.size(); ++i) {
-    const float p[3] = {end.x[i], end.y[i], end.z[i]};
-    bool in = true;
-    for (int a = 0; a < 3; ++a) in = in && std::isfinite(p[a]) && p[a] >= c.min[a] && p[a] <= c.max[a];
-    d.escaped += in ? 0 : 1;
-  }
+  d.escaped = countLostFluid(end, scene.container).lost();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return d;
 }

@@ -36,7 +36,7 @@ struct DambreakResult {
   double mean_density_error = 0.0;   // time mean of the metrics' density_error
   double max_density_error = 0.0;    // largest max_density_error over the run
   long capped = 0;                   // solves that stopped at max_iterations
-  long escaped = 0;                  // particles outside the container at the end
+  long escaped = 0;                  // particles lost at the end: outside the container or NaN/Inf
 };
 
 // Runs one dam break with the solver called `solver` on `backend`: one

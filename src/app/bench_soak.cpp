@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "app/fluid_census.h"
 #include "core/error.h"
 #include "core/fluid_state.h"
 #include "host/backend_factory.h"
@@ -108,29 +109,6 @@ RegionDesc soakRegion(int k, const FluidState& fluid) {
   return r;
 }
 
-struct Counts {
-  long nonfinite = 0, outside = 0;
-};
-
-Counts checkFluid(const FluidState& f, const ContainerDesc& c) {
-  Counts n;
-  for (size_t i = 0; i < f.size(); ++i) {
-    const float v[6] = {f.x[i], f.y[i], f.z[i], f.vx[i], f.vy[i], f.vz[i]};
-    bool finite = true;
-    for (float x : v) finite = finite && std::isfinite(x);
-    if (!finite) {
-      ++n.nonfinite;
-      continue;
-    }
-    for (int d = 0; d < 3; ++d)
-      if (v[d] < c.min[d] || v[d] > c.max[d]) {
-        ++n.outside;
-        break;
-      }
-  }
-  return n;
-}
-
 }  // namespace
 
 double residentMb() {
@@ -172,7 +150,7 @@ SoakResult runSoak(const SoakOptions& o, const BenchBackend& b) {
     r.min_controlled = r.min_controlled < 0 ? placed : std::min(r.min_controlled, placed);
     r.max_controlled = std::max(r.max_controlled, placed);
     sim.backend().readFluid(fluid);
-    const Counts n = checkFluid(fluid, sim.scene().container);
+    const FluidCensus n = countLostFluid(fluid, sim.scene().container);
     r.nonfinite += n.nonfinite;
     r.outside += n.outside;
     if (n.nonfinite || n.outside)

@@ -69,8 +69,9 @@ class OpenClBackend : public Backend {
     std::vector<uint32_t> start, order;
   };
   GridSnapshot readGrid(GridKind kind);
-  // The recapture's field of targets of the last control forces phase
-  // (sorted positions in the control grid's order; empty if it never ran).
+  // The recapture's field of targets of the last control forces phase that
+  // built it, i.e. that read it (sorted positions in the control grid's
+  // order; empty if it never ran).
   std::vector<uint32_t> readRecaptureField();
   double shapeMatchingClock() const { return clock_; }
   // How the neighbour phases (density, forces, control forces) map particles

@@ -56,8 +56,9 @@ void OpenClBackend::applyControlForces(float dt) {
     const float* g = params_.fluid.gravity;
     const DeviceGrid& cg = d.control_r;
     // Recapture (as Controller::addForces): its centre, fade and aim, then its
-    // field of targets (seeded, flooded into rseeds[0]; read only where the
-    // centre lies outside the shape), then the forces.
+    // field of targets (seeded, flooded into rseeds[0]; read only while the
+    // recapture acts and its centre lies outside the shape: the field's
+    // kernels read that from rcentre and otherwise do nothing), then the forces.
     const int gn[3] = {cg.geom.nx, cg.geom.ny, cg.geom.nz};
     const float go[3] = {cg.geom.ox, cg.geom.oy, cg.geom.oz};
     const RecaptureFieldGeom fg = recaptureFieldGeom(gn, go, cg.geom.cell);
@@ -70,11 +71,11 @@ void OpenClBackend::applyControlForces(float dt) {
     if (cp.recapture > 0.0f) {  // else the fade is 0 and the forces never read the field
       launch(d.queue(), d.recapture_seed, rfield_cells_, cg.start.get(), d.sx.get(), d.sy.get(), d.sz.get(),
              d.ss.get(), f4(go[0], go[1], go[2], cg.geom.cell), cg.geom.dims(),
-             i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rseeds[0].get());
+             i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rcentre.get(), d.rseeds[0].get());
       for (int step : recaptureFloodSteps(fg)) {
         launch(d.queue(), d.recapture_flood, rfield_cells_, d.rseeds[0].get(), d.sx.get(), d.sy.get(),
                d.sz.get(), cl_int(step), f4(fg.o[0], fg.o[1], fg.o[2], fg.fcell),
-               i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rseeds[1].get());
+               i4(fg.m[0], fg.m[1], fg.m[2], 0), d.rcentre.get(), d.rseeds[1].get());
         std::swap(d.rseeds[0], d.rseeds[1]);
       }
     }

@@ -15,11 +15,11 @@ RecaptureFieldGeom recaptureFieldGeom(const int n[3], const float o[3], float ce
   return g;
 }
 
-std::vector<int> recaptureFloodSteps(const RecaptureFieldGeom& g) {
-  std::vector<int> steps;
+RecaptureFloodSteps recaptureFloodSteps(const RecaptureFieldGeom& g) {
+  RecaptureFloodSteps steps;
   for (int k = ff_recapture_first_step(std::max({g.m[0], g.m[1], g.m[2]})); k >= 1; k /= 2)
-    steps.push_back(k);
-  steps.push_back(1);
+    steps.step[steps.count++] = k;
+  steps.step[steps.count++] = 1;
   return steps;
 }
 

@@ -19,8 +19,15 @@ struct RecaptureFieldGeom {
   size_t cells() const { return size_t(m[0]) * size_t(m[1]) * size_t(m[2]); }
 };
 RecaptureFieldGeom recaptureFieldGeom(const int n[3], const float o[3], float cell);
-// The jump-flooding steps in order: N/2, N/4, .., 1, then 1 again.
-std::vector<int> recaptureFloodSteps(const RecaptureFieldGeom& g);
+// The jump-flooding steps in order: N/2, N/4, .., 1, then 1 again (held in
+// place: building the field every step allocates nothing).
+struct RecaptureFloodSteps {
+  int step[33] = {};  // a field of at most 2^31 cells per axis: 31 halvings and the last 1
+  int count = 0;
+  const int* begin() const { return step; }
+  const int* end() const { return step + count; }
+};
+RecaptureFloodSteps recaptureFloodSteps(const RecaptureFieldGeom& g);
 
 class RecaptureField {
  public:

@@ -27,7 +27,7 @@ OpenClBackend::Impl::Impl(int device_index)
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
   sm_frames_by_lane = makeKernel(program, "sm_cluster_frames_by_lane", ctx, 256, 15 * sizeof(float));
   sm_particles = makeKernel(program, "sm_particles", ctx);
-  m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 4 * sizeof(float));
+  m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 5 * sizeof(float));
   m_coverage = makeKernel(program, "metrics_coverage", ctx, 256, sizeof(float));
   m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
   m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));

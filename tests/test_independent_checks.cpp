@@ -51,32 +51,46 @@ TEST(IndependentChecks, KineticEnergyOfAMovingBlock) {
 }
 
 // A block at rest: the density error is the mean of |rho_i - rho0| / rho0
-// with rho_i = sum_j m W_poly6(|x_i - x_j|, h), summed here by brute force.
+// with rho_i = sum_j m W_poly6(|x_i - x_j|, h), summed here by brute force,
+// and the compression the mean of max(rho_i - rho0, 0) / rho0. At the rest
+// spacing nothing is compressed; at 0.8 of it the inside is.
 TEST(IndependentChecks, DensityErrorOfABlockAtRest) {
   const ff::Params p;
   const float zero[3] = {0, 0, 0};
-  const ff::FluidState s = lattice(8, p.fluid.restSpacing(), zero);
-  ff::CpuBackend cpu(2);
-  cpu.init(p, bigBox(), s);
-  cpu.buildGrid(), cpu.computeDensity();
-  const ff::StepMetrics m = cpu.computeMetrics();
-  const double h = p.fluid.smoothing_radius, m0 = p.fluid.particle_mass, rho0 = p.fluid.rest_density;
-  const double coef = 315.0 / (64.0 * M_PI * std::pow(h, 9));
-  double err = 0.0, rho_max = 0.0;
-  for (size_t i = 0; i < s.size(); ++i) {
-    double rho = 0.0;
-    for (size_t j = 0; j < s.size(); ++j) {
-      const double dx = double(s.x[i]) - s.x[j], dy = double(s.y[i]) - s.y[j], dz = double(s.z[i]) - s.z[j];
-      const double q = h * h - (dx * dx + dy * dy + dz * dz);
-      if (q > 0) rho += m0 * coef * q * q * q;
+  for (const float squeeze : {1.0f, 0.8f}) {
+    SCOPED_TRACE(squeeze);
+    const ff::FluidState s = lattice(8, squeeze * p.fluid.restSpacing(), zero);
+    ff::CpuBackend cpu(2);
+    cpu.init(p, bigBox(), s);
+    cpu.buildGrid(), cpu.computeDensity();
+    const ff::StepMetrics m = cpu.computeMetrics();
+    const double h = p.fluid.smoothing_radius, m0 = p.fluid.particle_mass, rho0 = p.fluid.rest_density;
+    const double coef = 315.0 / (64.0 * M_PI * std::pow(h, 9));
+    double err = 0.0, comp = 0.0, rho_max = 0.0;
+    for (size_t i = 0; i < s.size(); ++i) {
+      double rho = 0.0;
+      for (size_t j = 0; j < s.size(); ++j) {
+        const double dx = double(s.x[i]) - s.x[j], dy = double(s.y[i]) - s.y[j], dz = double(s.z[i]) - s.z[j];
+        const double q = h * h - (dx * dx + dy * dy + dz * dz);
+        if (q > 0) rho += m0 * coef * q * q * q;
+      }
+      err += std::fabs(rho - rho0) / rho0;
+      comp += std::max(rho - rho0, 0.0) / rho0;
+      rho_max = std::max(rho_max, rho);
     }
-    err += std::fabs(rho - rho0) / rho0;
-    rho_max = std::max(rho_max, rho);
+    err /= double(s.size()), comp /= double(s.size());
+    ASSERT_GT(err, 0.05);  // the block's surface is half empty: a clear, non-zero error
+    EXPECT_NEAR(m.density_error, err, 1e-5 * err);
+    if (squeeze == 1.0f) {
+      EXPECT_EQ(comp, 0.0);
+      EXPECT_EQ(m.compression, 0.0);
+    } else {
+      ASSERT_GT(comp, 1e-3);  // the squeezed block's inside is compressed
+      EXPECT_LT(comp, err);   // and the surface's deficit is not compression
+      EXPECT_NEAR(m.compression, comp, 1e-5 * comp);
+    }
+    EXPECT_NEAR(m.max_density, rho_max, 1e-5 * rho_max);
   }
-  err /= double(s.size());
-  ASSERT_GT(err, 0.05);  // the block's surface is half empty: a clear, non-zero error
-  EXPECT_NEAR(m.density_error, err, 1e-5 * err);
-  EXPECT_NEAR(m.max_density, rho_max, 1e-5 * rho_max);
 }
 
 // A box target, the fluid's iou against it.

@@ -463,6 +463,7 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit =
   EXPECT_NEAR(mo.coverage, mc.coverage, kTol * std::max(1.0, mc.coverage));
   EXPECT_NEAR(mo.max_speed, mc.max_speed, kTol * mc.max_speed);
   EXPECT_NEAR(mo.density_error, mc.density_error, kTol * mc.density_error);
+  EXPECT_NEAR(mo.compression, mc.compression, kTol * std::max(mc.compression, 1e-3));
   EXPECT_NEAR(mo.kinetic_energy, mc.kinetic_energy, kTol * mc.kinetic_energy);
   EXPECT_NEAR(mo.max_density, mc.max_density, kTol * mc.max_density);
   EXPECT_EQ(mo.control_count, mc.control_count);

@@ -26,15 +26,19 @@ struct StepMetrics {
   double captured = 0.0;           // share of the controlled fluid inside the target
   double stray = 0.0;              // share of the controlled fluid out of every control particle's reach
   long velocity_clamps = 0;        // fluid velocities the speed limit cut since the previous metrics
+  // Mean over the fluid of max(rho - rho0, 0) / rho0: the compression alone,
+  // what an incompressible solver bounds (the free surface's deficit, which
+  // density_error also counts, is not an error of the solve).
+  double compression = 0.0;
 };
 
 // The metrics as a table row: the column names (the CSV header of
 // `flowform run --metrics`, the keys of the Python module's arrays) and the
 // values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 17> kMetricColumns = {
+inline constexpr std::array<const char*, 18> kMetricColumns = {
     "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
     "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps"};
+    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps",   "compression"};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),
@@ -53,7 +57,8 @@ inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics&
           m.filled,
           m.captured,
           m.stray,
-          double(m.velocity_clamps)};
+          double(m.velocity_clamps),
+          m.compression};
 }
 
 }  // namespace ff

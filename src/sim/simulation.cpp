@@ -182,7 +182,7 @@ void Simulation::step() {
   metrics_.substeps = n;
   metrics_.max_density_error = (metrics_.max_density - double(fp.rest_density)) / double(fp.rest_density);
   for (double v : {metrics_.iou, metrics_.coverage, metrics_.max_speed, metrics_.density_error,
-                   metrics_.kinetic_energy, metrics_.max_density})
+                   metrics_.kinetic_energy, metrics_.max_density, metrics_.compression})
     if (!std::isfinite(v))
       throw Error("step " + std::to_string(step_) + ": a metric became NaN or Inf in phase 'metrics'");
 }

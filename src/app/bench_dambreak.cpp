@@ -13,7 +13,7 @@
 
 namespace ff::app {
 
-SceneDesc dambreakScene(int nx, int ny, int nz, const std::string& solver) {
+SceneDesc dambreakScene(const DambreakCase& c, const std::string& solver) {
   const PressureSolverKind kind = solverByName(solver);
   SceneDesc s;
   s.preset = solver == "dfsph" ? "water" : "paper";
@@ -21,9 +21,17 @@ SceneDesc dambreakScene(int nx, int ny, int nz, const std::string& solver) {
   s.params.fluid.solver = kind;
   s.name = "dambreak-" + solver;
   s.source = "<flowform bench --dambreak>";
-  const float sp = s.params.fluid.restSpacing();
+  FluidParams& f = s.params.fluid;
+  if (c.spacing > 0.0f) {  // the preset's particle, resized
+    const float ratio = c.spacing / f.restSpacing();
+    f.particle_mass = f.rest_density * c.spacing * c.spacing * c.spacing;
+    f.smoothing_radius *= ratio, f.particle_radius *= ratio;
+  }
+  const float sp = f.restSpacing();
+  const int nx = c.dims[0], ny = c.dims[1], nz = c.dims[2];
   s.container.min = Vec3(0.0f, 0.0f, 0.0f);
-  s.container.max = Vec3(4.0f * float(nx) * sp, 2.5f * float(ny) * sp, float(nz) * sp);
+  s.container.max = c.geometry == "peer" ? Vec3(4.0f, 3.0f, 1.5f)
+                                         : Vec3(4.0f * float(nx) * sp, 2.5f * float(ny) * sp, float(nz) * sp);
   FluidBlockDesc b;
   b.origin = Vec3(0.0f, 0.0f, 0.0f);
   b.dims[0] = nx, b.dims[1] = ny, b.dims[2] = nz;
@@ -31,21 +39,33 @@ SceneDesc dambreakScene(int nx, int ny, int nz, const std::string& solver) {
   return s;
 }
 
-std::vector<std::array<int, 3>> dambreakSizes(long max_fluid, bool quick) {
-  if (quick) return {{10, 20, 8}};
-  std::vector<std::array<int, 3>> sizes;
-  for (const std::array<int, 3>& d : {std::array<int, 3>{20, 40, 15}, std::array<int, 3>{40, 80, 31}})
-    if (long(d[0]) * d[1] * d[2] <= max_fluid || sizes.empty()) sizes.push_back(d);
-  return sizes;
+std::vector<DambreakCase> dambreakCases(const std::string& geometry, long max_fluid, bool quick) {
+  std::vector<DambreakCase> all;
+  if (geometry == "peer") {  // SPlisHSPlasH: particle radius 1 / (2 (n + 1)) m
+    for (int n : quick ? std::vector<int>{11} : std::vector<int>{23, 47})
+      all.push_back({geometry, {n, n, n}, 1.0f / float(n + 1)});
+  } else if (geometry == "paper") {
+    const std::vector<std::array<int, 3>> dims =
+        quick ? std::vector<std::array<int, 3>>{{10, 20, 8}}
+              : std::vector<std::array<int, 3>>{{20, 40, 15}, {40, 80, 31}};
+    for (const std::array<int, 3>& d : dims) all.push_back({geometry, d, 0.0f});
+  } else {
+    throw Error("--geometry: '" + geometry + "' is not one of peer, paper");
+  }
+  std::vector<DambreakCase> cases;
+  for (const DambreakCase& c : all)
+    if (c.count() <= max_fluid || cases.empty()) cases.push_back(c);
+  return cases;
 }
 
-DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& solver, const BenchBackend& b,
+DambreakResult runDambreak(const DambreakCase& c, const std::string& solver, const BenchBackend& b,
                            double sim_seconds) {
   const auto t0 = std::chrono::steady_clock::now();
   DambreakResult d;
   d.solver = solver;
   BenchResult& r = d.timing;
-  r.fluid = long(size[0]) * size[1] * size[2];
+  d.geometry = c.geometry;
+  r.fluid = c.count();
   std::string note;
   std::unique_ptr<Backend> backend = makeBackend(b.kind, b.device, b.threads, &note);
   r.backend = backend->name();
@@ -53,8 +73,9 @@ DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& so
   std::unique_ptr<Simulation> sim;
   SceneDesc scene;
   try {
-    scene = dambreakScene(size[0], size[1], size[2], solver);
+    scene = dambreakScene(c, solver);
     d.preset = scene.preset;
+    d.spacing = double(scene.params.fluid.restSpacing());
     r.scene = scene.name;
     sim = std::make_unique<Simulation>(scene, std::move(backend));
   } catch (const Error& e) {
@@ -67,9 +88,17 @@ DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& so
   // One untimed frame step first: an OpenCL runtime compiles kernels at their
   // first launch (PoCL: about 2 s), which is setup, not simulation.
   sim->step();
-  double derr = 0.0, iterations = 0.0;
+  double derr = 0.0, iterations = 0.0, compression = 0.0;
+  std::vector<float> rho, pressure;
+  const double rho0 = double(scene.params.fluid.rest_density);
   timeSteps(*sim, steps, r, [&](const Simulation& s) {
     const StepMetrics& m = s.metrics();
+    // The solvers' own measure (SPlisHSPlasH's too): the mean compression;
+    // density_error also counts the free surface's missing neighbours.
+    sim->backend().readDensity(rho, pressure);
+    double c = 0.0;
+    for (float v : rho) c += std::max(double(v) / rho0 - 1.0, 0.0);
+    compression += rho.empty() ? 0.0 : c / double(rho.size());
     derr += m.density_error;
     iterations += double(m.solver_iterations);
     d.max_density_error = std::max(d.max_density_error, m.max_density_error);
@@ -80,6 +109,7 @@ DambreakResult runDambreak(const std::array<int, 3>& size, const std::string& so
   d.ms_per_step = r.sum_ms / double(steps);
   d.iterations_per_step = iterations / double(steps);
   d.mean_density_error = derr / double(steps);
+  d.mean_compression = compression / double(steps);
   FluidState end;
   sim->backend().readFluid(end);
   d.escaped = countLostFluid(end, scene.container).lost();
@@ -94,19 +124,22 @@ void printDambreak(std::FILE* out, const std::vector<DambreakResult>& results) {
       "\n### Dam break, no control (wall s per simulated s: the timed frame steps' phases, after one untimed "
       "step)\n\n");
   std::fprintf(out,
-               "| solver | preset | backend | device | fluid | sim s | frame steps | **wall s / sim s** | "
-               "ms / step | substeps / step | iterations / step | mean density error | max density error | "
-               "capped solves | escaped |\n");
-  std::fprintf(out, "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+               "| solver | preset | geometry | spacing m | backend | device | fluid | sim s | frame steps | "
+               "**wall s / sim s** | "
+               "ms / step | substeps / step | iterations / step | mean density error | mean compression | "
+               "max density error | capped solves | escaped |\n");
+  std::fprintf(out,
+               "|---|---|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const DambreakResult& d : results) {
     if (!d.skipped.empty()) continue;
     const BenchResult& r = d.timing;
-    std::fprintf(
-        out,
-        "| %s | %s | %s | %s | %ld | %.3f | %d | **%.3f** | %.3f | %.2f | %.1f | %.6f | %.6f | %ld | %ld |\n",
-        d.solver.c_str(), d.preset.c_str(), r.backend.c_str(), r.device.c_str(), r.fluid, d.sim_seconds,
-        r.steps, d.wall_per_sim_s, d.ms_per_step, r.mean_substeps, d.iterations_per_step,
-        d.mean_density_error, d.max_density_error, d.capped, d.escaped);
+    std::fprintf(out,
+                 "| %s | %s | %s | %.5f | %s | %s | %ld | %.3f | %d | **%.3f** | %.3f | %.2f | %.1f | %.6f | "
+                 "%.6f | %.6f | %ld | %ld |\n",
+                 d.solver.c_str(), d.preset.c_str(), d.geometry.c_str(), d.spacing, r.backend.c_str(),
+                 r.device.c_str(), r.fluid, d.sim_seconds, r.steps, d.wall_per_sim_s, d.ms_per_step,
+                 r.mean_substeps, d.iterations_per_step, d.mean_density_error, d.mean_compression,
+                 d.max_density_error, d.capped, d.escaped);
   }
   for (const DambreakResult& d : results)
     if (!d.skipped.empty())

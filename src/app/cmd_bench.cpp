@@ -29,9 +29,10 @@ namespace {
 
 struct BenchOptions {
   bool table1 = false, fluid_sweep = false, control_sweep = false, dambreak = false;
-  std::string solver = "all";  // --dambreak: wcsph, dfsph or all
-  double seconds = 1.0;        // --dambreak: simulated seconds
-  bool quick = false;          // --dambreak: one small block
+  std::string solver = "all";     // --dambreak: wcsph, dfsph or all
+  double seconds = 1.0;           // --dambreak: simulated seconds
+  bool quick = false;             // --dambreak: one small block
+  std::string geometry = "peer";  // --dambreak: peer or paper
   std::string backend = "all";
   int device = -1;
   int threads = 0;
@@ -91,6 +92,7 @@ void validate(const BenchOptions& o) {
   if (o.max_control < 100) throw Error("--max-control: must be at least 100");
   if (!(o.seconds > 0.0) || o.seconds > 600.0)
     throw Error("--seconds: must be a number of simulated seconds in (0, 600]");
+  dambreakCases(o.geometry, o.max_fluid, o.quick);  // throws naming --geometry
   if (o.solver != "all" && o.solver != "wcsph" && o.solver != "dfsph")
     throw Error("--solver: '" + o.solver + "' is not one of all, wcsph, dfsph");
   if (!(o.budget_s > 0.0)) throw Error("--budget: must be a positive number of seconds");
@@ -214,13 +216,13 @@ void runDambreaks(const BenchOptions& o, const std::vector<BenchBackend>& backen
   for (const char* k : {"wcsph", "dfsph"})
     if (o.solver == "all" || o.solver == k) solvers.push_back(k);
   std::vector<DambreakResult> out;
-  for (const std::array<int, 3>& size : dambreakSizes(o.max_fluid, o.quick))
+  for (const DambreakCase& c : dambreakCases(o.geometry, o.max_fluid, o.quick))
     for (const std::string& k : solvers)
       for (const BenchBackend& b : backends) {
-        std::fprintf(stderr, "bench: dam break, %d fluid, %s on %s ...", size[0] * size[1] * size[2],
+        std::fprintf(stderr, "bench: dam break (%s), %ld fluid, %s on %s ...", c.geometry.c_str(), c.count(),
                      k.c_str(), b.kind.c_str());
         std::fflush(stderr);
-        out.push_back(runDambreak(size, k, b, o.seconds));
+        out.push_back(runDambreak(c, k, b, o.seconds));
         const DambreakResult& d = out.back();
         if (d.skipped.empty())
           std::fprintf(stderr, " %.2f s per simulated s (%s)\n", d.wall_per_sim_s, d.timing.device.c_str());
@@ -287,7 +289,10 @@ std::function<int()> addBenchCommand(CLI::App& app) {
       "substeps, solver iterations, density error");
   cmd->add_option("--solver", o->solver, "--dambreak: wcsph, dfsph or all (default)");
   cmd->add_option("--seconds", o->seconds, "--dambreak: simulated seconds per run (default 1)");
-  cmd->add_flag("--quick", o->quick, "--dambreak: one 1.6k block instead (a check, not a benchmark)");
+  cmd->add_flag("--quick", o->quick, "--dambreak: one small block instead (a check, not a benchmark)");
+  cmd->add_option("--geometry", o->geometry,
+                  "--dambreak: peer (default: SPlisHSPlasH's DamBreakModel, a 1 m cube of 23^3 / 47^3 "
+                  "particles in a 4 x 3 x 1.5 m tank) or paper (the paper's 6.3 mm spacing, 12k / 99.2k)");
   cmd->add_option("--backend", o->backend,
                   "all (default), cpu or opencl (every OpenCL device unless --device)");
   cmd->add_option("--device", o->device, "OpenCL device index (see `flowform devices`)");

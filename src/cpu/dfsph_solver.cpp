@@ -1,9 +1,11 @@
 #include "cpu/dfsph_solver.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 #include "cpu/lane_group.h"
+#include "cpu/neighbour_cache.h"
 #include "ff_dfsph.h"
 
 namespace ff {
@@ -29,8 +31,10 @@ struct Kernel {
 };
 
 // w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2 and the count of
-// neighbours within H of the particles b .. e-1 (6 x 8 lanes).
-FF_SIMD_CLONES void factorSums(const CpuFluid& f, uint32_t b, uint32_t e, const Kernel& kr, float* out) {
+// neighbours within H of the particles b .. e-1 (6 x 8 lanes), group gi.
+// Keeps the candidates that a lane reaches (g != 0) with their g in `cache`.
+FF_SIMD_CLONES void factorSums(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
+                               float* out, NeighbourCache& cache) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
   Group g;
@@ -39,6 +43,9 @@ FF_SIMD_CLONES void factorSums(const CpuFluid& f, uint32_t b, uint32_t e, const 
   const float h2 = kr.h * kr.h;
   const f8 zero = simd::splat(0.0f);
   f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;
+  size_t most = 0;
+  for (size_t r = 0; r < spans.size(); r += 2) most += spans[r + 1] - spans[r];
+  NeighbourCache::Writer out_list = cache.open(most);
   for (size_t r = 0; r < spans.size(); r += 2)
     for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
@@ -49,51 +56,76 @@ FF_SIMD_CLONES void factorSums(const CpuFluid& f, uint32_t b, uint32_t e, const 
       ax += gf * dx, ay += gf * dy, az += gf * dz;
       ssq += gf * gf * r2;
       cnt += r2 < h2 ? simd::splat(1.0f) : zero;
+      out_list.put(j, gf, simd::any(gf > zero));  // g >= 0
     }
+  cache.close(gi, out_list);
   const f8 sums[6] = {w, ax, ay, az, ssq, cnt};
   for (int q = 0; q < 6; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
 }
 
-// rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1.
-FF_SIMD_CLONES void rateSums(const CpuFluid& f, const float* ux, const float* uy, const float* uz, uint32_t b,
-                             uint32_t e, const Kernel& kr, float* out) {
-  const FluidState& s = f.s;
-  std::vector<uint32_t>& spans = threadSpans();
+// The lanes of group gi (particles b .. e-1) as loadGroup sets them.
+inline Group lanesOf(const FluidState& s, uint32_t b, uint32_t e) {
   Group g;
-  loadGroup(s, b, e, kr.h, f.grid, g, spans);
+  g.n = int(e - b);
+  g.x = simd::loadN(&s.x[b], g.n, kLaneFar), g.y = simd::loadN(&s.y[b], g.n, kLaneFar);
+  g.z = simd::loadN(&s.z[b], g.n, kLaneFar);
+  return g;
+}
+
+// rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1 (group gi), over
+// the cached candidates: the grid walk's terms in its order.
+FF_SIMD_CLONES void rateSums(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* ux,
+                             const float* uy, const float* uz, uint32_t b, uint32_t e, float* out) {
+  const FluidState& s = f.s;
+  const Group g = lanesOf(s, b, e);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
   const f8 uxi = simd::loadN(&ux[b], g.n, 0.0f), uyi = simd::loadN(&uy[b], g.n, 0.0f),
            uzi = simd::loadN(&uz[b], g.n, 0.0f);
+  const uint32_t* js = nc.neighbours(gi);
+  const float* gs = nc.values(gi);
+  const uint32_t m = nc.count(gi);
   f8 rs = simd::splat(0.0f);
-  for (size_t r = 0; r < spans.size(); r += 2)
-    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
-      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      const f8 gf = ff_cubic_grad_factor(simd::sqrt8(dx * dx + dy * dy + dz * dz), kr.inv_h, kr.kg);
-      rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
-    }
+  for (uint32_t q = 0; q < m; ++q) {
+    const uint32_t j = js[q];
+    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+    f8 gf;
+    std::memcpy(&gf, gs + 8 * size_t(q), sizeof gf);
+    rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
+  }
   simd::storeN(out, rs, g.n);
 }
 
-// ks = sum_j g (k_i + k_j) r_ij of the particles b .. e-1 (3 x 8 lanes).
-FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const float* k, uint32_t b, uint32_t e, const Kernel& kr,
-                              float* out) {
+// ks = sum_j g (k_i + k_j) r_ij of the particles b .. e-1 (group gi; 3 x 8
+// lanes), over the cached candidates.
+FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* k,
+                              uint32_t b, uint32_t e, float* out) {
   const FluidState& s = f.s;
-  std::vector<uint32_t>& spans = threadSpans();
-  Group g;
-  loadGroup(s, b, e, kr.h, f.grid, g, spans);
+  const Group g = lanesOf(s, b, e);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
   const f8 ki = simd::loadN(&k[b], g.n, 0.0f);
+  const uint32_t* js = nc.neighbours(gi);
+  const float* gs = nc.values(gi);
+  const uint32_t m = nc.count(gi);
   const f8 zero = simd::splat(0.0f);
   f8 kx = zero, ky = zero, kz = zero;
-  for (size_t r = 0; r < spans.size(); r += 2)
-    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
-      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      const f8 c =
-          ff_cubic_grad_factor(simd::sqrt8(dx * dx + dy * dy + dz * dz), kr.inv_h, kr.kg) * (ki + k[j]);
-      kx += c * dx, ky += c * dy, kz += c * dz;
-    }
+  for (uint32_t q = 0; q < m; ++q) {
+    const uint32_t j = js[q];
+    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+    f8 gf;
+    std::memcpy(&gf, gs + 8 * size_t(q), sizeof gf);
+    const f8 c = gf * (ki + k[j]);
+    kx += c * dx, ky += c * dy, kz += c * dz;
+  }
   const f8 sums[3] = {kx, ky, kz};
   for (int q = 0; q < 3; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
+}
+
+// Runs body(gi, b, e) over the lane groups in parallel.
+template <class Body>
+void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
+  const long n = long(groups.size() / 2);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (long gi = 0; gi < n; ++gi) body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
 void box(const ContainerDesc& c, float* lo, float* hi) {
@@ -121,12 +153,13 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   box(c, lo, hi);
   const FluidState& s = f.s;
   const long groups = long(f.groups.size() / 2);
+  const int threads = cache_.reset(size_t(groups));
   int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
   for (long gi = 0; gi < groups; ++gi) {
     const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
     float sums[48];
-    factorSums(f, b, e, kr, sums);
+    factorSums(f, size_t(gi), b, e, kr, sums, cache_);
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       const float pos[3] = {s.x[i], s.y[i], s.z[i]}, a[3] = {sums[8 + l], sums[16 + l], sums[24 + l]};
@@ -144,10 +177,9 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
 }
 
 void DfsphSolver::rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz) {
-  const Kernel kr(vol_h_);
-  forEachGroup(f.groups, [&](uint32_t b, uint32_t e) {
+  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float rs[8];
-    rateSums(f, vx, vy, vz, b, e, kr, rs);
+    rateSums(f, cache_, gi, vx, vy, vz, b, e, rs);
     for (uint32_t i = b; i < e; ++i) {
       const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
       rate_[i] = ff_dfsph_rate(rs[i - b], vol_, u, wg);
@@ -156,10 +188,9 @@ void DfsphSolver::rates(const CpuFluid& f, const float* vx, const float* vy, con
 }
 
 void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k) {
-  const Kernel kr(vol_h_);
-  forEachGroup(f.groups, [&](uint32_t b, uint32_t e) {
+  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float ks[24];
-    kappaSums(f, k.data(), b, e, kr, ks);
+    kappaSums(f, cache_, gi, k.data(), b, e, ks);
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
@@ -231,7 +262,8 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
 
 bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& c, float dt) {
   const long n = long(f.size());
-  if (alpha_.size() != size_t(n)) throw Error("dfsph: the pressure phase ran before the density phase");
+  if (alpha_.size() != size_t(n) || cache_.groups() != f.groups.size() / 2)
+    throw Error("dfsph: the pressure phase ran before the density phase");
   if (n == 0) return true;
   FluidState& s = f.s;
   for (auto* a : {&b_, &rate_, &dux_, &duy_, &duz_, &inc_}) a->resize(size_t(n));
@@ -299,7 +331,7 @@ size_t DfsphSolver::memoryBytes() const {
   for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &kd_, &kv_, &b_, &rate_, &dux_, &duy_, &duz_, &ux_,
                         &uy_, &uz_, &scratch_})
     floats += v->capacity();
-  return floats * sizeof(float) + bulk_.capacity();
+  return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
 }
 
 }  // namespace ff

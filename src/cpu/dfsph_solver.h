@@ -10,6 +10,7 @@
 #pragma once
 #include <vector>
 
+#include "cpu/neighbour_cache.h"
 #include "cpu/pressure_solver.h"
 
 namespace ff {
@@ -50,6 +51,7 @@ class DfsphSolver : public PressureSolver {
   float vol_spacing_ = 0.0f, vol_h_ = 0.0f;     // what vol_ was computed for
   std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
+  NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;

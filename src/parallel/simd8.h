@@ -54,9 +54,9 @@ inline f8 keep(i8 m, f8 a) {
 }
 
 inline bool any(i8 m) {
-  int r = 0;
-  for (int l = 0; l < 8; ++l) r |= m[l];
-  return r != 0;
+  unsigned long long w[4];
+  std::memcpy(w, &m, sizeof w);
+  return ((w[0] | w[1]) | (w[2] | w[3])) != 0;
 }
 
 inline float hmin(f8 v, int n) {

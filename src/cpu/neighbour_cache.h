@@ -1,0 +1,67 @@
+// neighbour_cache.h - for each lane group of the fluid (CpuFluid::groups), the
+// neighbour candidates that at least one of its lanes reaches, in the order the
+// density phase's grid walk visits them, with one value per lane and pair (the
+// DFSPH solver keeps the kernel gradient's factor g; 0 where that lane does
+// not reach the candidate). Built once per substep while the density phase
+// searches the grid, so the solver's Jacobi passes walk a short list instead
+// of searching 27 cells with a square root and a kernel per candidate. Each
+// lane adds the same terms in the same order as the grid walk (a candidate no
+// lane reaches adds only zeros there), so the sums are unchanged. Each thread
+// appends to its own buffer.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "parallel/simd8.h"
+
+namespace ff {
+
+class NeighbourCache {
+ public:
+  // Forgets every list and sizes the index for `groups` groups (outside a
+  // parallel region; the buffers keep their capacity). Returns the most
+  // threads that may fill it: the filling region's num_threads.
+  int reset(size_t groups);
+
+  // Group gi's list as it is written, from inside the filling region: room
+  // for `most` candidates; put() writes one at the current end and keeps it
+  // if `keep` (branch-free), close() stores the list.
+  class Writer {
+   public:
+    void put(uint32_t j, const simd::f8& g, bool keep) {
+      j_[n_] = j;
+      std::memcpy(g_ + 8 * n_, &g, sizeof g);
+      n_ += keep ? 1 : 0;
+    }
+
+   private:
+    friend class NeighbourCache;
+    uint32_t* j_ = nullptr;
+    float* g_ = nullptr;
+    size_t n_ = 0;
+  };
+  Writer open(size_t most);
+  void close(size_t gi, const Writer& w);
+
+  size_t groups() const { return count_.size(); }
+  uint32_t count(size_t gi) const { return count_[gi]; }
+  const uint32_t* neighbours(size_t gi) const { return buffers_[owner_[gi]].j.get() + offset_[gi]; }
+  // 8 lane values per candidate (load them with memcpy: no alignment).
+  const float* values(size_t gi) const { return buffers_[owner_[gi]].g.get() + 8 * size_t(offset_[gi]); }
+  size_t memoryBytes() const;
+
+ private:
+  struct Buffer {  // uninitialised storage: each substep overwrites it
+    std::unique_ptr<uint32_t[]> j;
+    std::unique_ptr<float[]> g;
+    size_t size = 0, capacity = 0;
+    void reserve(size_t n);
+  };
+  std::vector<Buffer> buffers_;                   // one per thread
+  std::vector<uint32_t> offset_, count_, owner_;  // per group
+};
+
+}  // namespace ff

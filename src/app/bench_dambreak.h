@@ -53,7 +53,7 @@ struct DambreakResult {
   double ms_per_step = 0.0;          // mean over the frame steps
   double iterations_per_step = 0.0;  // solver iterations (both solves, every substep)
   double mean_density_error = 0.0;   // time mean of the metrics' density_error (surface deficit included)
-  double mean_compression = 0.0;     // time mean of the mean over particles of max(rho / rho0 - 1, 0)
+  double mean_compression = 0.0;     // time mean of the metrics' compression (no free-surface deficit)
   double max_density_error = 0.0;    // largest max_density_error over the run
   long capped = 0;                   // solves that stopped at max_iterations
   long escaped = 0;                  // particles lost at the end: outside the container or NaN/Inf

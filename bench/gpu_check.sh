@@ -12,14 +12,17 @@
 #   build_log    the kernel compiler's log for the device (FLOWFORM_CL_BUILD_LOG)
 #   phases       the per-phase equivalence tests and the whole runs against
 #                the OpenMP backend (flowform_tests OpenClPhases.*, OpenClRun.*,
-#                OpenClPadding.*) with poisoned buffers; off PoCL they hold the
-#                GPU tolerances of tests/gpu_tolerance.h (docs/GPU.md,
-#                "Rounding"): 1e-5 of each quantity's error scale per phase,
-#                2e-3 m placement and 0.04 iou for whole runs
+#                OpenClPadding.*, the DFSPH solver's stages OpenClDfsph.*)
+#                with poisoned buffers; off PoCL they hold the GPU tolerances
+#                of tests/gpu_tolerance.h (docs/GPU.md, "Rounding"): 1e-5 of
+#                each quantity's error scale per phase, 2e-3 m placement and
+#                0.04 iou for whole runs
 #   run_*        the Table 1 bunny and the default scene for --seconds
 #                (default 4) on the scalar and the lanes kernels, metrics CSV
-#   bench_*      flowform bench --table1, and --fluid-sweep up to --max-fluid
-#                (default 1000000), OpenCL only, CSV
+#   bench_*      flowform bench --dambreak --solver dfsph (12k and 100k dam
+#                breaks over 0.5 s; --quick on a CPU device), --table1, and
+#                --fluid-sweep up to --max-fluid (default 1000000), OpenCL
+#                only, CSV
 # A stage that would pass the budget is cut by `timeout` (exit 124).
 # On a CPU OpenCL device (PoCL: a test of the script, not of a GPU) the
 # defaults shrink so that the whole script fits the budget there too: runs of
@@ -82,9 +85,9 @@ else
   dev_type=$(echo "$dev_types" | awk 'NR == 1 {print $2}')
 fi
 if [ "$dev_type" = CPU ]; then
-  seconds=${seconds:-1} steps=${steps:-50}
+  seconds=${seconds:-1} steps=${steps:-50} dambreak="--quick"
 else
-  seconds=${seconds:-4} steps=${steps:-200}
+  seconds=${seconds:-4} steps=${steps:-200} dambreak="--seconds 0.5 --max-fluid $max_fluid"
 fi
 echo "device type ${dev_type:-unknown}: runs of $seconds s, Table 1 bench of $steps steps, budget $budget s" | tee -a "$out/summary.txt"
 has_bunny() {
@@ -95,7 +98,7 @@ has_bunny() {
 {
   stage devices 30 "$fl" devices
   stage build_log 60 env FLOWFORM_CL_BUILD_LOG="$out/kernel_build_log.txt" "$fl" run --backend opencl $device --steps 1
-  stage phases 180 env FLOWFORM_CL_POISON=1 "$bin/flowform_tests" --gtest_filter='OpenClPhases.*:OpenClPadding.*:OpenClRun.*'
+  stage phases 180 env FLOWFORM_CL_POISON=1 "$bin/flowform_tests" --gtest_filter='OpenClPhases.*:OpenClPadding.*:OpenClRun.*:OpenClDfsph.*'
   for k in scalar lanes; do
     if has_bunny; then
       stage "run_bunny_$k" 90 "$fl" run scenes/bunny.json --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/bunny_$k.csv"
@@ -104,6 +107,7 @@ has_bunny() {
     fi
     stage "run_default_$k" 90 "$fl" run --backend opencl $device --kernels $k --seconds "$seconds" --metrics "$out/default_$k.csv"
   done
+  stage bench_dambreak_dfsph 150 "$fl" bench --dambreak --solver dfsph --backend opencl $device $dambreak
   stage bench_table1 120 "$fl" bench --table1 --backend opencl $device --steps "$steps" --warmup 20 --csv "$out/bench_table1.csv"
   left=$((budget - ($(date +%s) - start) - 10))
   stage bench_fluid_sweep 600 "$fl" bench --fluid-sweep --backend opencl $device --max-fluid "$max_fluid" --budget "$left" --csv "$out/bench_fluid_sweep.csv"

@@ -3,6 +3,7 @@
 #include "host/backend_factory.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
+#include "host/dfsph_cl.h"
 
 namespace ff {
 
@@ -104,10 +105,22 @@ void OpenClBackend::init(const Params& params, const ContainerDesc& box, const F
   });
 }
 
+ClFluidRefs OpenClBackend::fluidRefs() {
+  Impl& d = *d_;
+  ClFluidRefs f;
+  f.queue = &d.queue(), f.context = &d.ctx.context();
+  f.x = &d.X(), f.y = &d.Y(), f.z = &d.Z(), f.vx = &d.VX(), f.vy = &d.VY(), f.vz = &d.VZ();
+  f.rho = &d.rho.get(), f.p = &d.p.get(), f.ax = &d.ax.get(), f.ay = &d.ay.get(), f.az = &d.az.get();
+  f.grid = &d.fluid_h, f.bad = &d.bad.get(), f.n = n_, f.lanes = lanes_;
+  return f;
+}
+
 void OpenClBackend::setParams(const Params& params) {
-  if (params.fluid.solver != PressureSolverKind::Wcsph)
-    throw Error(std::string("params.fluid.solver: \"") + solverName(params.fluid.solver) +
-                "\" runs on the OpenMP backend only so far (use --backend cpu)");
+  if (params.fluid.solver == PressureSolverKind::Dfsph && !dfsph_)
+    dfsph_ = clGuard("starting the DFSPH solver",
+                     [&] { return std::make_unique<ClDfsphSolver>(d_->program, d_->ctx); });
+  else if (params.fluid.solver != PressureSolverKind::Dfsph)
+    dfsph_.reset();
   if (params.fluid.smoothing_radius != params_.fluid.smoothing_radius) grid_state_ = GridState::Stale;
   params_ = params;
 }
@@ -180,6 +193,7 @@ void OpenClBackend::buildGrid() {
            d.VZ(), d.id[d.cur].get(), d.x[o].get(), d.y[o].get(), d.z[o].get(), d.vx[o].get(), d.vy[o].get(),
            d.vz[o].get(), d.id[o].get());
     d.cur = o;
+    if (dfsph_) dfsph_->reorder(fluidRefs());
     grid_state_ = GridState::Sorted;
     endPhase();
   });
@@ -191,7 +205,9 @@ void OpenClBackend::computeDensity() {
     const int tag = beginPhase(Phase::Density);
     const FluidParams& f = params_.fluid;
     const DeviceGrid& g = d.fluid_h;
-    if (lanes_)
+    if (dfsph_)
+      dfsph_->computeDensity(fluidRefs(), f, box_, tag);
+    else if (lanes_)
       launch(d.queue(), d.density_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(),
              g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius, f.particle_mass, f.rest_density,
              f.gas_constant, boxLo(box_), boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
@@ -224,13 +240,14 @@ void OpenClBackend::computeForces() {
 }
 
 void OpenClBackend::solvePressure(float dt) {
-  (void)dt;  // WCSPH's pressure does not depend on the substep
   clGuard("phase 'pressure'", [&] {
     Impl& d = *d_;
     const int tag = beginPhase(Phase::Pressure);
     const FluidParams& f = params_.fluid;
     const DeviceGrid& g = d.fluid_h;
-    if (lanes_)
+    if (dfsph_)
+      dfsph_->solve(fluidRefs(), f, dt, tag);
+    else if (lanes_)
       launch(d.queue(), d.pressure_wcsph_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(),
              cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius,
              f.particle_mass, boxLo(box_), boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
@@ -283,7 +300,8 @@ size_t OpenClBackend::memoryBytes() const {
         &d.inside,   &d.rcentre,    &d.rseeds[0], &d.rseeds[1], &d.reach,   &d.controlled, &d.partial,
         &d.clamps,   &d.bad})
     bytes += b->capacity();
-  return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes();
+  return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes() +
+         (dfsph_ ? dfsph_->memoryBytes() : 0);
 }
 
 void OpenClBackend::readFluid(FluidState& out) {

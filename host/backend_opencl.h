@@ -24,6 +24,9 @@
 
 namespace ff {
 
+class ClDfsphSolver;
+struct ClFluidRefs;
+
 class OpenClBackend : public Backend {
  public:
   // device_index: position in listClDevices() order; < 0: the first GPU, else
@@ -83,6 +86,8 @@ class OpenClBackend : public Backend {
   enum class KernelVariant { Auto, Scalar, Lanes };
   void setKernelVariant(KernelVariant v);
   bool usesLanes() const { return lanes_; }
+  // The DFSPH solver when params.fluid.solver is "dfsph" (else null), for tests.
+  const ClDfsphSolver* dfsph() const { return dfsph_.get(); }
 
  private:
   struct Impl;              // device buffers and kernels
@@ -91,7 +96,10 @@ class OpenClBackend : public Backend {
   void runShapeMatchStep(int tag);
   void uploadControl();
 
+  ClFluidRefs fluidRefs();
+
   std::unique_ptr<Impl> d_;
+  std::unique_ptr<ClDfsphSolver> dfsph_;  // params.fluid.solver "dfsph" (null: WCSPH)
   Params params_;
   ContainerDesc box_;
   size_t n_ = 0;        // fluid particles

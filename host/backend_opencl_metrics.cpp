@@ -7,6 +7,7 @@
 #include "host/backend_opencl.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
+#include "host/dfsph_cl.h"
 
 namespace ff {
 
@@ -32,6 +33,7 @@ StepMetrics OpenClBackend::computeMetrics() {
     cl::CommandQueue& q = d.queue();
     const cl::Context& c = d.ctx.context();
     StepMetrics m;
+    if (dfsph_) dfsph_->take(m.solver_iterations, m.solver_capped);
     const float rho0 = params_.fluid.rest_density, mass = params_.fluid.particle_mass;
     // Reduces n items with kernel k (width floats per item), returns the finished sums.
     auto reduce = [&](ClKernel& k, size_t n, size_t width, unsigned max_mask, auto&&... args) {

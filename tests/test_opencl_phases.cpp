@@ -48,6 +48,7 @@
 #include "host/cl_context.h"
 #include "host/cl_errors.h"
 #include "host/cl_program.h"
+#include "opencl_backend.h"
 #include "sim/simulation.h"
 #include "test_scenes.h"
 
@@ -55,18 +56,7 @@ namespace {
 
 constexpr double kTol = ff::test::kGpuPhaseTol;
 
-// The OpenCL backend on the default device (the first GPU, else the first
-// device: PoCL here). No OpenCL platform is a test failure, not a skip: PoCL
-// (pocl-opencl-icd) is a declared dependency that .ci/setup installs.
-std::unique_ptr<ff::OpenClBackend> openClBackend() {
-  try {
-    return std::make_unique<ff::OpenClBackend>(-1);
-  } catch (const ff::Error& e) {
-    ADD_FAILURE() << "the OpenCL backend did not start: " << e.what()
-                  << "\n(PoCL, package pocl-opencl-icd, is a declared dependency; .ci/setup installs it)";
-    return nullptr;
-  }
-}
+using fftest::openClBackend;
 
 struct Err {
   double max_rel = 0.0;   // max_i |a_i - b_i| / max(|a_i|, scale)

@@ -263,4 +263,38 @@ FF_FN float ff_dfsph_increment(float b, float alpha) {
   return b * alpha;
 }
 
+/* ---- The per-particle steps that src/cpu/dfsph_solver.cpp still writes
+ * inline, as bodies for the OpenCL kernels (kernels/dfsph_*.cl) and, once it
+ * calls them, the OpenMP solver; the same operations in the same order. ---- */
+
+/* Whether the divergence solve runs at a particle: its `neighbours` within H
+ * plus the walls' density share counted as the neighbours of the full support
+ * it stands for (`full`) reach `bulk_share` of a full support. */
+FF_FN int ff_dfsph_bulk(float neighbours, float wall_share, float full, float bulk_share) {
+  return neighbours + wall_share * full >= bulk_share * full;
+}
+
+/* The velocity before the density solve: u + dt (a + the walls' support of
+ * ff_dfsph_wall_support), a every other acceleration of the substep. */
+FF_FN void ff_dfsph_predict(const float* pos, const float* lo, const float* hi, float spacing, float vol,
+                            float H, float inv_h, const float* acc, float dt, float* u) {
+  float sup[3];
+  ff_dfsph_wall_support(pos, lo, hi, spacing, vol, H, inv_h, acc, sup);
+  for (int c = 0; c < 3; ++c) u[c] += dt * (acc[c] + sup[c]);
+}
+
+/* The pressure of both solves' k: p = rho0 (kd / dt^2 + kv / dt). */
+FF_FN float ff_dfsph_pressure(float kd, float kv, float inv_dt, float rho0) {
+  return rho0 * (kd * inv_dt + kv) * inv_dt;
+}
+
+/* The scalars every DFSPH kernel takes, in one struct of 4-byte fields (C++
+ * and OpenCL C lay it out alike). */
+typedef struct {
+  float lo[4], hi[4];            /* the container's corners (the 4th unused) */
+  float h, inv_h, k, kg;         /* support H, 1 / H, ff_cubic_coef(H), k / H^2 */
+  float vol, spacing, eps, full; /* V, rest spacing, alpha's floor, neighbours of a full support */
+  float bulk_share, rho0, cell, unused;
+} FfDfsphArgs;
+
 #endif /* FF_DFSPH_H */

@@ -128,6 +128,7 @@ void OpenClBackend::setParams(const Params& params) {
 void OpenClBackend::setControl(ControlSet set) {
   control_ = std::move(set);
   nc_ = control_.size();
+  if (control_.radius_scale.size() != nc_) control_.radius_scale.assign(nc_, 1.0f);  // as Controller::reset
   nclusters_ = control_.clusters.count();
   clock_ = 0.0;
   frame_ = RigidFrame();
@@ -144,8 +145,10 @@ void OpenClBackend::uploadControl() {
   upload(q, c, d.cx, s.x), upload(q, c, d.cy, s.y), upload(q, c, d.cz, s.z);
   upload(q, c, d.cvx, s.vx), upload(q, c, d.cvy, s.vy), upload(q, c, d.cvz, s.vz);
   upload(q, c, d.x0, s.x0), upload(q, c, d.y0, s.y0), upload(q, c, d.z0, s.z0);
+  upload(q, c, d.crs, s.radius_scale);
   upload(q, c, d.gx, s.x), upload(q, c, d.gy, s.y), upload(q, c, d.gz, s.z);  // as Controller::reset
-  for (DeviceBuffer* b : {&d.s, &d.ux, &d.uy, &d.uz, &d.sx, &d.sy, &d.sz, &d.ss, &d.svx, &d.svy, &d.svz})
+  for (DeviceBuffer* b :
+       {&d.s, &d.ux, &d.uy, &d.uz, &d.sx, &d.sy, &d.sz, &d.ss, &d.svx, &d.svy, &d.svz, &d.sr2, &d.scoef})
     b->ensure(c, nc_ * sizeof(float));
   fillBuffer(q, d.s, 1.0f, nc_);
   for (DeviceBuffer* b : {&d.ux, &d.uy, &d.uz}) fillBuffer(q, *b, 0.0f, nc_);

@@ -23,15 +23,16 @@ void OpenClBackend::computeControlScale() {
     ClKernel& by_lane = d.control_scale_by_lane;
     if (!lanes_ && by_lane.pow2_local >= 8) {
       const size_t local = by_lane.pow2_local, groups = (8 * nc_ + local - 1) / local;
-      launchGroups(d.queue(), by_lane, groups, local, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(),
-                   d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(),
-                   g.geom.cell, params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(),
-                   d.uy.get(), d.uz.get(), d.bad.get(), cl_int(tag), cl::Local(local * 4 * sizeof(float)));
+      launchGroups(d.queue(), by_lane, groups, local, d.cx.get(), d.cy.get(), d.cz.get(), d.crs.get(),
+                   cl_uint(nc_), d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(),
+                   g.geom.dims(), g.geom.cell, params_.control.radius, params_.fluid.restVolume(), d.s.get(),
+                   d.ux.get(), d.uy.get(), d.uz.get(), d.bad.get(), cl_int(tag),
+                   cl::Local(local * 4 * sizeof(float)));
     } else {
-      launch(d.queue(), d.control_scale, nc_, d.cx.get(), d.cy.get(), d.cz.get(), cl_uint(nc_), d.X(), d.Y(),
-             d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
-             params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(), d.uy.get(),
-             d.uz.get(), d.bad.get(), cl_int(tag));
+      launch(d.queue(), d.control_scale, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.crs.get(), cl_uint(nc_),
+             d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), g.start.get(), g.geom.geo(), g.geom.dims(),
+             g.geom.cell, params_.control.radius, params_.fluid.restVolume(), d.s.get(), d.ux.get(),
+             d.uy.get(), d.uz.get(), d.bad.get(), cl_int(tag));
     }
     endPhase();
   });
@@ -47,8 +48,9 @@ void OpenClBackend::applyControlForces(float dt) {
     d.grids.build(d.control_r, d.cx.get(), d.cy.get(), d.cz.get(), nc_, r / float(FF_CONTROL_GRID_DIVISIONS),
                   boxMin(box_), boxMax(box_));
     launch(d.queue(), d.control_gather, nc_, d.control_r.order.get(), cl_uint(nc_), d.cx.get(), d.cy.get(),
-           d.cz.get(), d.s.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.sx.get(), d.sy.get(), d.sz.get(),
-           d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get());
+           d.cz.get(), d.s.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.crs.get(), r, d.sx.get(),
+           d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(),
+           d.scoef.get());
     const int pull_mode = cp.pullMode();
     const float unit_scale = cp.units == ControlForceUnits::Force ? 1.0f / params_.fluid.particle_mass : 1.0f;
     const float cp_volume = control_.particle_volume;
@@ -84,12 +86,12 @@ void OpenClBackend::applyControlForces(float dt) {
     ClKernel& k = lanes_ ? d.control_forces_lanes : d.control_forces;
     launch(d.queue(), k, lanes_ ? padded8(n_) / 8 : n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
            d.rho.get(), cl_uint(n_), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(),
-           d.svz.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
-           cp.pullAttraction(g), cp.pullVelocity(g), cp.gravity_compensation, pull_mode, unit_scale,
-           f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.rseeds[0].get(),
-           f4(fg.o[0], fg.o[1], fg.o[2], fg.inv_fcell), i4(fg.m[0], fg.m[1], fg.m[2], 0), d.id[d.cur].get(),
-           mask, cl_int(masked_ ? 1 : 0), rparams, d.ax.get(), d.ay.get(), d.az.get(), d.reach.get(),
-           d.bad.get(), cl_int(tag));
+           d.svz.get(), d.sr2.get(), d.scoef.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(),
+           cg.geom.cell, r, cp_volume, full_at, cp.pullAttraction(g), cp.pullVelocity(g),
+           cp.gravity_compensation, pull_mode, unit_scale, f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(),
+           d.rseeds[0].get(), f4(fg.o[0], fg.o[1], fg.o[2], fg.inv_fcell), i4(fg.m[0], fg.m[1], fg.m[2], 0),
+           d.id[d.cur].get(), mask, cl_int(masked_ ? 1 : 0), rparams, d.ax.get(), d.ay.get(), d.az.get(),
+           d.reach.get(), d.bad.get(), cl_int(tag));
     endPhase();
   });
 }

@@ -37,7 +37,9 @@ struct OpenClBackend::Impl {
 
   // Control particles (fixed order) and their per-step fields.
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
+  DeviceBuffer crs;                            // radius scales (adaptive control)
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
+  DeviceBuffer sr2, scoef;                     // their own radius squared and poly6 coefficient
   DeviceBuffer rcentre;    // the recapture's centre (xyz), fade and aim (control_forces.cl)
   DeviceBuffer rseeds[2];  // the recapture's field of targets and its flooding scratch
   // Clusters (CSR both ways) and their per-step frames.

@@ -14,17 +14,22 @@
 #include "ff_recapture_field.h"
 #include "ff_sph.h"
 
-// Control particles (position, s, velocity) copied into their grid's order.
+// Control particles (position, s, velocity) copied into their grid's order,
+// with their own radius (ff_control_radius of `radius` and the scale rs)
+// squared and its poly6 coefficient.
 __kernel void control_gather(__global const uint* order, uint nc, __global const float* x,
                              __global const float* y, __global const float* z, __global const float* s,
                              __global const float* vx, __global const float* vy, __global const float* vz,
-                             __global float* sx, __global float* sy, __global float* sz, __global float* ss,
-                             __global float* svx, __global float* svy, __global float* svz) {
+                             __global const float* rs, float radius, __global float* sx, __global float* sy,
+                             __global float* sz, __global float* ss, __global float* svx, __global float* svy,
+                             __global float* svz, __global float* sr2, __global float* scoef) {
   const uint k = get_global_id(0);
   if (k >= nc) return;
   const uint i = order[k];
   sx[k] = x[i], sy[k] = y[i], sz[k] = z[i], ss[k] = s[i];
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
+  const float r = ff_control_radius(radius, rs[i]);
+  sr2[k] = r * r, scoef[k] = ff_poly6_coef(r);
 }
 
 // The recapture's centre (out[0..2]), fade (out[3]) and whether it aims at
@@ -114,12 +119,15 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
 // full_at = ff_control_full_coverage(cp_volume, radius, ff_poly6_coef(radius)), evaluated
 // once on the host (as the CPU backend does) so that both use the same cbrt.
 // The control grid (cells of radius / FF_CONTROL_GRID_DIVISIONS) is read in
-// its rows within reach, ascending: the order of Controller::addForces.
+// its rows within reach of `radius` (the largest), ascending: the order of
+// Controller::addForces; each control particle k weighs with its own kernel
+// (sr2[k], scoef[k] from control_gather).
 __kernel void control_forces(__global const float* x, __global const float* y, __global const float* z,
                              __global const float* vx, __global const float* vy, __global const float* vz,
                              __global const float* rho, uint n, __global const float* sx,
                              __global const float* sy, __global const float* sz, __global const float* ss,
                              __global const float* svx, __global const float* svy, __global const float* svz,
+                             __global const float* sr2, __global const float* scoef,
                              __global const uint* start, float4 geo, int4 dims, float cell, float radius,
                              float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
                              float unit_scale, float4 gravity, float dt, __global const float* rcentre,
@@ -129,7 +137,6 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
                              __global uchar* reached, __global int* bad, int tag) {
   const uint e = get_global_id(0);
   if (e >= n) return;
-  const float r2 = radius * radius, coef = ff_poly6_coef(radius);
   const float xe = x[e], ye = y[e], ze = z[e];
   const float reach = ff_query_reach(radius, cell);
   const int z0 = ff_cell_coord(ze - reach, geo.z, geo.w, dims.z),
@@ -147,7 +154,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       for (uint k = b; k < en; ++k) {
         const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
         const float d2 = FF_DOT(d, d);
-        const float w = ff_poly6(d2, r2, coef);
+        const float w = ff_poly6(d2, sr2[k], scoef[k]);
         if (w <= 0.0f) continue;
         fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
         wsum += w;
@@ -166,15 +173,14 @@ __kernel void control_forces_lanes(
     __global const float* vy, __global const float* vz, __global const float* rho, uint n,
     __global const float* sx, __global const float* sy, __global const float* sz, __global const float* ss,
     __global const float* svx, __global const float* svy, __global const float* svz,
-    __global const uint* start, float4 geo, int4 dims, float cell, float radius, float cp_volume,
-    float full_at, float wa, float wv, float gc, int pull_mode, float unit_scale, float4 gravity, float dt,
-    __global const float* rcentre, __global const uint* seeds, float4 fgeo, int4 fdims,
-    __global const uint* id, __global const uchar* controlled, int use_mask, float4 rparams,
-    __global float* ax, __global float* ay, __global float* az, __global uchar* reached, __global int* bad,
-    int tag) {
+    __global const float* sr2, __global const float* scoef, __global const uint* start, float4 geo, int4 dims,
+    float cell, float radius, float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
+    float unit_scale, float4 gravity, float dt, __global const float* rcentre, __global const uint* seeds,
+    float4 fgeo, int4 fdims, __global const uint* id, __global const uchar* controlled, int use_mask,
+    float4 rparams, __global float* ax, __global float* ay, __global float* az, __global uchar* reached,
+    __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
-  const float r2 = radius * radius, coef = ff_poly6_coef(radius);
   const int8 valid = ff_lane_valid(i0, n);
   const float8 xe = ff_load_lanes(x, i0, valid, FF_LANE_FAR), ye = ff_load_lanes(y, i0, valid, FF_LANE_FAR),
                ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
@@ -189,8 +195,8 @@ __kernel void control_forces_lanes(
       for (uint k = b; k < en; ++k) {
         const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
         const float8 d2 = dx * dx + dy * dy + dz * dz;
-        if (!any(d2 < r2)) continue;  // no lane in reach: every term is 0
-        const float8 w = ff_poly6_8(d2, r2, coef);
+        if (!any(d2 < sr2[k])) continue;  // no lane in reach: every term is 0
+        const float8 w = ff_poly6_8(d2, sr2[k], scoef[k]);
         const float8 a = ff_attraction_factor_8(sqrt(d2), ss[k], w);
         fax += dx * a, fay += dy * a, faz += dz * a;
         wsum += w;

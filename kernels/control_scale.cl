@@ -5,6 +5,8 @@
 // consecutive sorted positions at a time: position k adds to lane k mod 8,
 // and the lanes combine by ff_lane_sum8. Mirrors Controller::computeScale in
 // src/control/controller.cpp. The fluid buffers hold a multiple of 8 floats.
+// Each control particle sums within its own radius: `radius` times its scale
+// rs[i] (ff_control_radius, adaptive control).
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_check.h"
 #include "ff_control.h"
@@ -30,14 +32,15 @@ void control_scale_store(uint i, float total, float tx, float ty, float tz, floa
 }
 
 __kernel void control_scale(__global const float* cx, __global const float* cy, __global const float* cz,
-                            uint nc, __global const float* fx, __global const float* fy,
-                            __global const float* fz, __global const float* fvx, __global const float* fvy,
-                            __global const float* fvz, __global const uint* start, float4 geo, int4 dims,
-                            float cell, float radius, float volume, __global float* s_out,
-                            __global float* ux_out, __global float* uy_out, __global float* uz_out,
-                            __global int* bad, int tag) {
+                            __global const float* rs, uint nc, __global const float* fx,
+                            __global const float* fy, __global const float* fz, __global const float* fvx,
+                            __global const float* fvy, __global const float* fvz, __global const uint* start,
+                            float4 geo, int4 dims, float cell, float radius, float volume,
+                            __global float* s_out, __global float* ux_out, __global float* uy_out,
+                            __global float* uz_out, __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= nc) return;
+  radius = ff_control_radius(radius, rs[i]);  // its own (adaptive control)
   const float r2 = radius * radius, coef = ff_poly6_coef(radius);
   const float px = cx[i], py = cy[i], pz = cz[i];
   const float reach = ff_query_reach(radius, cell);
@@ -74,16 +77,18 @@ __kernel void control_scale(__global const float* cx, __global const float* cy, 
 // ff_lane_sum8 in local memory. Work-groups of a multiple of 8 work-items;
 // `tmp` holds 4 floats per work-item.
 __kernel void control_scale_by_lane(__global const float* cx, __global const float* cy,
-                                    __global const float* cz, uint nc, __global const float* fx,
-                                    __global const float* fy, __global const float* fz,
-                                    __global const float* fvx, __global const float* fvy,
-                                    __global const float* fvz, __global const uint* start, float4 geo,
-                                    int4 dims, float cell, float radius, float volume, __global float* s_out,
-                                    __global float* ux_out, __global float* uy_out, __global float* uz_out,
-                                    __global int* bad, int tag, __local float* tmp) {
+                                    __global const float* cz, __global const float* rs, uint nc,
+                                    __global const float* fx, __global const float* fy,
+                                    __global const float* fz, __global const float* fvx,
+                                    __global const float* fvy, __global const float* fvz,
+                                    __global const uint* start, float4 geo, int4 dims, float cell,
+                                    float radius, float volume, __global float* s_out, __global float* ux_out,
+                                    __global float* uy_out, __global float* uz_out, __global int* bad,
+                                    int tag, __local float* tmp) {
   const uint i = get_global_id(0) / 8u, lane = get_local_id(0) & 7u, lid = get_local_id(0);
   float sum = 0.0f, ux = 0.0f, uy = 0.0f, uz = 0.0f;
   if (i < nc) {
+    radius = ff_control_radius(radius, rs[i]);  // its own (adaptive control)
     const float r2 = radius * radius, coef = ff_poly6_coef(radius);
     const float px = cx[i], py = cy[i], pz = cz[i];
     const float reach = ff_query_reach(radius, cell);

@@ -156,16 +156,18 @@ void expectDensityIsTheSphSum(const ff::FluidState& s, const std::vector<float>&
   EXPECT_LE(worst, 1e-5);
 }
 
-// s_i = 1 - min(1, V sum_e W(|c_i - x_e|, r)) (eq. 5) and u_bar = V sum_e W v_e / max(V sum_e W, 1),
-// brute force over all the fluid, for every control particle.
+// s_i = 1 - min(1, V sum_e W(|c_i - x_e|, r_i)) (eq. 5) and u_bar = V sum_e W v_e / max(V sum_e W, 1),
+// brute force over all the fluid, for every control particle, r_i its own
+// radius (the control radius times its radius scale: adaptive control).
 void expectControlScaleIsTheSum(const ff::ControlSet& c, const ff::ControlFields& f, const ff::FluidState& s,
                                 const ff::Params& p) {
-  const double r = p.control.radius, v = p.fluid.restVolume();
+  const double v = p.fluid.restVolume();
   double worst_s = 0.0, worst_u = 0.0, vmax = 1e-3;
   for (size_t e = 0; e < s.size(); ++e)
     vmax = std::max(
         vmax, std::sqrt(double(s.vx[e]) * s.vx[e] + double(s.vy[e]) * s.vy[e] + double(s.vz[e]) * s.vz[e]));
   for (size_t i = 0; i < c.size(); ++i) {
+    const double r = double(p.control.radius) * c.radius_scale[i];
     double w = 0.0, u[3] = {0, 0, 0};
     for (size_t e = 0; e < s.size(); ++e) {
       const double dx = double(c.x[i]) - s.x[e], dy = double(c.y[i]) - s.y[e], dz = double(c.z[i]) - s.z[e];
@@ -270,8 +272,9 @@ std::unique_ptr<Pair> makePair(int steps, const ff::SceneDesc& scene = smallScen
 constexpr double kPoclPhaseTol = 4.0 / 16777216.0;
 
 // Every phase on both backends; the OpenCL backend with the given kernel variant.
-void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit = false) {
-  auto p = makePair(40);
+void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit = false,
+                    const ff::SceneDesc& scene = smallScene()) {
+  auto p = makePair(40, scene);
   ASSERT_TRUE(p);
   ff::CpuBackend& cpu = p->cpu;
   ff::OpenClBackend& ocl = *p->ocl;
@@ -478,6 +481,36 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit =
 
 TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {
   checkEachPhase(ff::OpenClBackend::KernelVariant::Auto, true);
+}
+
+// Adaptive control (thin features): a thin plate (a box 1 x 0.12 x 1) gives
+// its control particles their own radii, most below the control radius; each
+// phase still agrees bit for bit on PoCL (and within the variant tests'
+// 4 ulp in the one-particle-per-work-item kernels), and eq. 5's
+// scale is the brute-force sum within each particle's own radius.
+ff::SceneDesc thinPlateScene() {
+  ff::SceneDesc s = fftest::blockScene(ff::Vec3(0.3f, 0.2f, 0.3f), ff::Vec3(0.08f, 0.0f, 0.08f), 20, 8, 20);
+  ff::TargetSpec plate = fftest::target(ff::TargetKind::Box, 700);
+  plate.box_size = ff::Vec3(1.0f, 0.12f, 1.0f);
+  s.schedule.push_back({0.0, plate});
+  s.params.control.adaptive = 1;
+  return s;
+}
+
+TEST(OpenClPhases, ThinPlateOwnRadiiMatchTheCpuBackend) {
+  {
+    ff::Simulation sim(thinPlateScene(), std::make_unique<ff::CpuBackend>(2));
+    ff::ControlSet c;
+    ff::ControlFields f;
+    sim.backend().readControl(c, f);
+    ASSERT_EQ(c.radius_scale.size(), c.size());
+    const size_t smaller = size_t(
+        std::count_if(c.radius_scale.begin(), c.radius_scale.end(), [](float s) { return s < 0.99f; }));
+    std::printf("  %zu of %zu control particles with a radius below the control radius\n", smaller, c.size());
+    EXPECT_GT(smaller, c.size() / 2) << "the thin plate did not get smaller radii";
+  }
+  checkEachPhase(ff::OpenClBackend::KernelVariant::Auto, true, thinPlateScene());
+  checkEachPhase(ff::OpenClBackend::KernelVariant::Scalar, false, thinPlateScene());
 }
 
 // Both variants of the neighbour kernels, whatever the device: the one for

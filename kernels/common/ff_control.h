@@ -10,6 +10,15 @@ FF_FN float ff_control_scale(float rho_hat) {
   return 1.0f - FF_FMIN(1.0f, rho_hat);
 }
 
+/* Adaptive control (docs/CONTROL_UNITS.md, "Thin features"): a control
+ * particle's own radius, the control radius times its scale (at most 1: the
+ * target's local thickness around it). Eq. 4-6 weigh each control particle
+ * with the poly6 kernel of its own radius (r^2 and ff_poly6_coef of it, once
+ * per control particle and step). */
+FF_FN float ff_control_radius(float radius, float scale) {
+  return radius * scale;
+}
+
 /* The control particles' grid has cells of radius / FF_CONTROL_GRID_DIVISIONS
  * (queries prune it to the sphere, ff_row_cells), over the container. */
 #define FF_CONTROL_GRID_DIVISIONS 2

@@ -17,10 +17,41 @@ int64_t key(int64_t a, int64_t b, int64_t c) {
 int64_t floorDiv(int64_t a, int64_t b) {
   return a >= 0 ? a / b : -((-a + b - 1) / b);
 }
+
+// The members of one cube (ascending) split into their connected parts
+// (26-neighbour voxels), each in ascending order, ordered by their first member.
+std::vector<std::vector<uint32_t>> connectedParts(const std::vector<uint32_t>& m, const std::vector<int>& vi,
+                                                  const std::vector<int>& vj, const std::vector<int>& vk) {
+  std::unordered_map<int64_t, uint32_t> at;  // voxel -> position in m
+  for (uint32_t q = 0; q < m.size(); ++q) at.emplace(key(vi[m[q]], vj[m[q]], vk[m[q]]), q);
+  std::vector<int> part(m.size(), -1);
+  std::vector<std::vector<uint32_t>> parts;
+  std::vector<uint32_t> stack;
+  for (uint32_t q0 = 0; q0 < m.size(); ++q0) {
+    if (part[q0] >= 0) continue;
+    const int id = int(parts.size());
+    parts.emplace_back();
+    part[q0] = id, stack.assign(1, q0);
+    while (!stack.empty()) {
+      const uint32_t q = stack.back();
+      stack.pop_back();
+      parts.back().push_back(m[q]);
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            auto it = at.find(key(vi[m[q]] + dx, vj[m[q]] + dy, vk[m[q]] + dz));
+            if (it == at.end() || part[it->second] >= 0) continue;
+            part[it->second] = id, stack.push_back(it->second);
+          }
+    }
+    std::sort(parts.back().begin(), parts.back().end());
+  }
+  return parts;
+}
 }  // namespace
 
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width) {
+                   const std::vector<int>& vk, int stride, int half_width, bool connected) {
   const size_t n = set.size();
   // Candidate centres: lattice points (multiples of stride) within half_width of any particle.
   std::unordered_map<int64_t, std::vector<uint32_t>> groups;
@@ -50,10 +81,17 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   std::vector<int> covered(n, 0);
   for (size_t c = 0; c < centre_keys.size(); ++c) {
     auto& m = groups[centre_keys[c]];
-    if (m.size() < 4) continue;
-    for (uint32_t p : m) covered[p] = 1;
-    kept.push_back(std::move(m));
-    kx.push_back(cxs[c]), ky.push_back(cys[c]), kz.push_back(czs[c]);
+    std::vector<std::vector<uint32_t>> parts;
+    if (connected)
+      parts = connectedParts(m, vi, vj, vk);
+    else
+      parts.push_back(std::move(m));
+    for (auto& part : parts) {
+      if (part.size() < 4) continue;
+      for (uint32_t p : part) covered[p] = 1;
+      kept.push_back(std::move(part));
+      kx.push_back(cxs[c]), ky.push_back(cys[c]), kz.push_back(czs[c]);
+    }
   }
   // A particle in no cluster joins the nearest kept cluster (or, with no
   // cluster at all, every particle forms one cluster together).

@@ -13,7 +13,11 @@ namespace ff {
 // with fewer than 4 particles are dropped; a particle left in no cluster joins
 // the cluster whose centre is nearest. Fills set.clusters (members in
 // ascending particle order, rest centres, particle -> cluster lists).
+// connected (adaptive control, "clusters follow limbs"): the particles in a
+// cube that are not connected to each other inside it (voxels touching by a
+// face, edge or corner) form separate clusters, so that two limbs, or a limb
+// and the body, that pass through one cube are not matched as one rigid piece.
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width);
+                   const std::vector<int>& vk, int stride, int half_width, bool connected = false);
 
 }  // namespace ff

@@ -26,6 +26,11 @@ struct ControlSet {
   std::vector<float> x, y, z;     // current positions
   std::vector<float> vx, vy, vz;  // current velocities
   std::vector<float> x0, y0, z0;  // rest positions (reference particles, target frame)
+  // Adaptive control: each particle's radius as a share (0, 1] of
+  // params.control.radius (placement: the target's local thickness). Empty,
+  // or of another size than x: 1 for every particle (the controller and the
+  // OpenCL backend fill it so).
+  std::vector<float> radius_scale;
   Clusters clusters;
   float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
   float particle_volume = 0;                    // rest volume of one control particle (the voxel volume)

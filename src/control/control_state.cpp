@@ -5,8 +5,8 @@ namespace ff {
 
 void Controller::saveState(StateWriter& w) const {
   w.tag("CTRL");
-  for (const auto* a :
-       {&set_.x, &set_.y, &set_.z, &set_.vx, &set_.vy, &set_.vz, &set_.x0, &set_.y0, &set_.z0})
+  for (const auto* a : {&set_.x, &set_.y, &set_.z, &set_.vx, &set_.vy, &set_.vz, &set_.x0, &set_.y0, &set_.z0,
+                        &set_.radius_scale})
     w.vec(*a);
   const Clusters& c = set_.clusters;
   w.vec(c.start), w.vec(c.members), w.vec(c.rest_cx), w.vec(c.rest_cy), w.vec(c.rest_cz);
@@ -20,7 +20,9 @@ void Controller::saveState(StateWriter& w) const {
 void Controller::loadState(StateReader& r) {
   r.tag("CTRL");
   ControlSet set;
-  for (auto* a : {&set.x, &set.y, &set.z, &set.vx, &set.vy, &set.vz, &set.x0, &set.y0, &set.z0}) r.vec(*a);
+  for (auto* a :
+       {&set.x, &set.y, &set.z, &set.vx, &set.vy, &set.vz, &set.x0, &set.y0, &set.z0, &set.radius_scale})
+    r.vec(*a);
   Clusters& c = set.clusters;
   r.vec(c.start), r.vec(c.members), r.vec(c.rest_cx), r.vec(c.rest_cy), r.vec(c.rest_cz);
   r.vec(c.of_start), r.vec(c.of);
@@ -29,8 +31,11 @@ void Controller::loadState(StateReader& r) {
   // the shape-matching loops read out of bounds.
   const size_t n = set.x.size();
   bool ok = true;
-  for (const auto* a : {&set.y, &set.z, &set.vx, &set.vy, &set.vz, &set.x0, &set.y0, &set.z0})
+  for (const auto* a :
+       {&set.y, &set.z, &set.vx, &set.vy, &set.vz, &set.x0, &set.y0, &set.z0, &set.radius_scale})
     ok = ok && a->size() == n;
+  // A radius scale must lie in (0, 1] (NaN fails too): the radius bounds every query.
+  for (float s : set.radius_scale) ok = ok && s > 0.0f && s <= 1.0f;
   const size_t nc = c.count();
   ok = ok && c.rest_cx.size() == nc && c.rest_cy.size() == nc && c.rest_cz.size() == nc;
   ok = ok && (c.start.empty() || (c.start.front() == 0 && c.start.back() == c.members.size()));

@@ -20,6 +20,7 @@ void Controller::setBounds(const float lo[3], const float hi[3]) {
 void Controller::reset(ControlSet set) {
   set_ = std::move(set);
   const size_t n = set_.size();
+  if (set_.radius_scale.size() != n) set_.radius_scale.assign(n, 1.0f);
   fields_.s.assign(n, 1.0f);
   fields_.ux.assign(n, 0.0f), fields_.uy.assign(n, 0.0f), fields_.uz.assign(n, 0.0f);
   q_.assign(set_.clusters.count(), FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
@@ -82,24 +83,23 @@ FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const floa
 // out: 7 x 8 floats (attraction x, y, z, sum of W, sum of W v x, y, z).
 FF_SIMD_CLONES void forceSums(const float* x, const float* y, const float* z, uint32_t b, uint32_t e,
                               const UniformGrid& cp_grid, const float* sx, const float* sy, const float* sz,
-                              const float* ss, const float* svx, const float* svy, const float* svz, float r,
-                              float coef, float* out) {
+                              const float* ss, const float* svx, const float* svy, const float* svz,
+                              const float* sr2, const float* scoef, float r, float* out) {
   const int n = int(e - b);
   const f8 xe = simd::loadN(x + b, n, kFar), ye = simd::loadN(y + b, n, kFar),
            ze = simd::loadN(z + b, n, kFar);
   const float lo[3] = {simd::hmin(xe, n), simd::hmin(ye, n), simd::hmin(ze, n)};
   const float hi[3] = {simd::hmax(xe, n), simd::hmax(ye, n), simd::hmax(ze, n)};
   std::vector<uint32_t>& spans = threadSpans();
-  cp_grid.rangesNear(lo, hi, r, spans);
-  const float r2 = r * r;
+  cp_grid.rangesNear(lo, hi, r, spans);  // r: the largest radius
   const f8 zero = simd::splat(0.0f);
   f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
   for (size_t s = 0; s < spans.size(); s += 2)
     for (uint32_t k = spans[s]; k < spans[s + 1]; ++k) {
       const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
       const f8 d2 = dx * dx + dy * dy + dz * dz;
-      if (!simd::any(d2 < r2)) continue;  // no lane in reach: every term is 0
-      const f8 w = ff_poly6(d2, r2, coef);
+      if (!simd::any(d2 < sr2[k])) continue;  // no lane in reach: every term is 0
+      const f8 w = ff_poly6(d2, sr2[k], scoef[k]);
       const f8 a = ff_attraction_factor(simd::sqrt8(d2), ss[k], w);
       fax += dx * a, fay += dy * a, faz += dz * a;
       wsum += w;
@@ -137,11 +137,11 @@ Controller::SortedFluid Controller::sorted(const FluidView& f) {
 bool Controller::computeScale(const FluidView& f) {
   const long n = long(set_.size());
   if (n == 0) return true;
-  const float r = cp_.radius, coef = ff_poly6_coef(r);
   const SortedFluid sf = sorted(f);
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 32) reduction(| : bad)
   for (long i = 0; i < n; ++i) {
+    const float r = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i)]), coef = ff_poly6_coef(r);
     const float p[3] = {set_.x[i], set_.y[i], set_.z[i]};
     const ScaleSums t = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, coef);
     const float rho_hat = f.volume * t.w;
@@ -169,11 +169,13 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   else
     cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell);
   const auto& order = cp_grid_.order();
-  for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_}) a->resize(n);
+  for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_, &sr2_, &scoef_}) a->resize(n);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = order[k];
     sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i], ss_[k] = fields_.s[i];
     svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
+    const float ri = ff_control_radius(r, set_.radius_scale[i]);
+    sr2_[k] = ri * ri, scoef_[k] = ff_poly6_coef(ri);
   }
   const int mode = cp_.pullMode();
   const float unit_scale = cp_.units == ControlForceUnits::Force ? 1.0f / f.mass : 1.0f;
@@ -213,7 +215,7 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
     float sums[56];
     forceSums(sf.x, sf.y, sf.z, b, e, cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data(), svx_.data(),
-              svy_.data(), svz_.data(), r, coef, sums);
+              svy_.data(), svz_.data(), sr2_.data(), scoef_.data(), r, sums);
     for (uint32_t k = b; k < e; ++k) {
       const size_t l = k - b;
       const float wsum = sums[24 + l];
@@ -273,6 +275,9 @@ size_t Controller::memoryBytes() const {
                         &svx_,
                         &svy_,
                         &svz_,
+                        &sr2_,
+                        &scoef_,
+                        &set_.radius_scale,
                         &cx_,
                         &cy_,
                         &cz_,

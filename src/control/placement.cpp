@@ -4,11 +4,21 @@
 
 #include "control/clusters.h"
 #include "core/error.h"
+#include "target/local_thickness.h"
 
 namespace ff {
 
+AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing) {
+  AdaptiveControl a;
+  a.on = cp.adaptive != 0;
+  a.radius = cp.radius;
+  a.min_radius = std::fmin(cp.radius, std::fmax(1.5f * voxel, 2.0f * fluid_spacing));
+  return a;
+}
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
-                                 const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi) {
+                                 const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
+                                 const AdaptiveControl& adaptive) {
   const size_t n = target.reference.size();
   if (n == 0) throw Error("target '" + target.label + "' has no reference particles");
   Vec3 tlo = target.reference[0], thi = target.reference[0];
@@ -60,7 +70,17 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     shift[d] = std::fmax(-cap, std::fmin(cap, shift[d]));
   }
   for (size_t p = 0; p < n; ++p) set.x[p] += shift.x(), set.y[p] += shift.y(), set.z[p] += shift.z();
-  buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width);
+  set.radius_scale.assign(n, 1.0f);
+  if (adaptive.on && adaptive.radius > 0.0f) {
+    // reference[p] is the p-th inside voxel in grid index order.
+    const std::vector<float> t = localThickness(g, adaptive.radius);
+    size_t p = 0;
+    for (size_t c = 0; c < g.inside.size() && p < n; ++c)
+      if (g.inside[c])
+        set.radius_scale[p++] =
+            std::fmin(adaptive.radius, std::fmax(adaptive.min_radius, t[c])) / adaptive.radius;
+  }
+  buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width, adaptive.on);
   return set;
 }
 

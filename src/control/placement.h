@@ -19,7 +19,26 @@ namespace ff {
 // otherwise the walls would push the forming shape away from its fluid. The
 // shift is at most half the region's extent along each axis, so the particles
 // still start over the fluid they control.
+//
+// With `adaptive` on (thin features, docs/CONTROL_UNITS.md): each particle's
+// radius_scale is the target's local thickness around its voxel
+// (target/local_thickness.h), clamped to [min_radius, radius], as a share of
+// radius; and the clusters follow limbs (buildClusters' `connected`). Off:
+// every radius_scale is 1 and the clusters are the paper's cubes.
+struct AdaptiveControl {
+  bool on = false;
+  float radius = 0.0f;      // params.control.radius: the largest radius
+  float min_radius = 0.0f;  // the smallest (adaptiveControl)
+};
+// The adaptive control of `cp` for a target of voxel size `voxel` and fluid of
+// particle spacing `fluid_spacing`: the smallest radius is 2 fluid spacings
+// (the fluid sum of eq. 5 then still holds ~30 particles) and 1.5 voxels
+// (the control sums of eq. 4 and 6 still hold ~14 control particles), never
+// above cp.radius.
+AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing);
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
-                                 const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi);
+                                 const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
+                                 const AdaptiveControl& adaptive = AdaptiveControl());
 
 }  // namespace ff

@@ -98,6 +98,10 @@ const std::vector<ParamInfo>& paramTable() {
        "1: eq. 4 and 6 normalised by the local control weight (attraction_g, velocity_rate; units unused); "
        "0: as the paper writes them (attraction, velocity, units)",
        FF_FIELD(control.normalise)},
+      {"control", "adaptive", T::Integer, 0, 1, false,
+       "1: each control particle's radius follows the target's local thickness and clusters follow limbs "
+       "(thin features); 0: one radius, cube clusters (the paper)",
+       FF_FIELD(control.adaptive)},
       {"control", "attraction_g", T::Real, 0.0, 1e3, false,
        "normalised attraction (normalise = 1): its most, in units of gravity",
        FF_FIELD(control.attraction_g)},

@@ -87,6 +87,12 @@ struct ControlParams {
   int normalise = 0;
   float attraction_g = 8.7f;   // most attraction, in units of g
   float velocity_rate = 2.9f;  // the velocity force's relaxation rate, in units of sqrt(g / r)
+  // Adaptive control (docs/CONTROL_UNITS.md, "Thin features"): 1 = each control
+  // particle's radius follows the target's local thickness (at most `radius`)
+  // and clusters hold only particles connected to each other inside them;
+  // 0 = one radius and cube clusters, as the paper (the default: measured,
+  // docs/RESULTS.md, "Thin features").
+  int adaptive = 0;
   // The constants eq. 4 and 6 are multiplied by (w_a, w_v, or their normalised
   // forms g attraction_g and sqrt(g / r) velocity_rate), and the scale mode
   // of ff_pull_scale (kernels/common/ff_control.h).

@@ -272,7 +272,8 @@ void Simulation::setTarget(const TargetSpec& spec) {
   // Placed before any state changes: if placement throws, the simulation and
   // the backend keep the previous target, which the cache still holds.
   ControlSet placed =
-      placeControlParticles(shape, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max);
+      placeControlParticles(shape, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max,
+                            adaptiveControl(scene_.params.control, shape.grid.voxel, fp.restSpacing()));
   target_ = &shape;
   target_volume_ = volume;
   target_spec_ = spec;

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""thin_shapes.py - writes thin target meshes of the kinds issue 10 names, that
+the project was not tuned on (docs/RESULTS.md, "Thin features"):
+
+  thin_disc.obj      a disc 10 times as wide as it is thick (a surface of revolution)
+  dumbbell.obj       two balls joined by a bar a quarter of their radius thick
+  letter_t.obj       an extruded letter T, strokes a fifth of its height wide
+
+Each is one closed, consistently oriented triangle mesh (the voxeliser counts
+ray crossings). Usage: python3 bench/thin_shapes.py FOLDER
+"""
+import math
+import os
+import sys
+
+
+def revolve(profile, segments=48):
+    """A closed surface of revolution about the x axis: profile is a list of
+    (x, r) from one pole (r = 0) to the other (r = 0)."""
+    verts, faces = [], []
+    rings = []
+    for x, r in profile:
+        if r == 0.0:
+            verts.append((x, 0.0, 0.0))
+            rings.append([len(verts) - 1])
+            continue
+        ring = []
+        for s in range(segments):
+            a = 2.0 * math.pi * s / segments
+            verts.append((x, r * math.cos(a), r * math.sin(a)))
+            ring.append(len(verts) - 1)
+        rings.append(ring)
+    for a, b in zip(rings, rings[1:]):
+        if len(a) == 1:
+            for s in range(segments):
+                faces.append((a[0], b[(s + 1) % segments], b[s]))
+        elif len(b) == 1:
+            for s in range(segments):
+                faces.append((a[s], a[(s + 1) % segments], b[0]))
+        else:
+            for s in range(segments):
+                t = (s + 1) % segments
+                faces.append((a[s], a[t], b[t]))
+                faces.append((a[s], b[t], b[s]))
+    return verts, faces
+
+
+def disc():
+    r, half = 1.0, 0.05  # 2.0 wide, 0.1 thick
+    return revolve([(-half, 0.0), (-half, r), (half, r), (half, 0.0)], 96)
+
+
+def dumbbell():
+    ball, bar, gap = 1.0, 0.25, 2.0  # balls of radius 1, centres 2 + 2 apart, bar radius 0.25
+    c = ball + gap / 2.0
+    prof = []
+    n = 24
+    # left ball from its far pole to where it meets the bar
+    meet = math.sqrt(ball * ball - bar * bar)
+    for i in range(n + 1):
+        a = math.pi * i / n
+        x, r = -c - ball * math.cos(a), ball * math.sin(a)
+        if x > -c + meet:
+            break
+        prof.append((x, r))
+    prof.append((-c + meet, bar))
+    prof.append((c - meet, bar))
+    for i in range(n + 1):
+        a = math.pi * i / n
+        x, r = c - ball * math.cos(a), ball * math.sin(a)
+        if x < c - meet:
+            continue
+        prof.append((x, r))
+    prof[0] = (prof[0][0], 0.0)
+    prof[-1] = (prof[-1][0], 0.0)
+    return revolve(prof)
+
+
+def letter_t():
+    # The T's outline (counter-clockwise seen from +z), extruded along z.
+    w, h, s, d = 1.0, 1.0, 0.2, 0.2  # width, height, stroke, depth
+    poly = [(-w / 2, h), (-w / 2, h - s), (-s / 2, h - s), (-s / 2, 0.0), (s / 2, 0.0), (s / 2, h - s),
+            (w / 2, h - s), (w / 2, h)]
+    n = len(poly)
+    verts = [(x, y, -d / 2) for x, y in poly] + [(x, y, d / 2) for x, y in poly]
+    # The caps as two convex pieces of the outline: the bar and the stem.
+    pieces = [(0, 1, 2, 5, 6, 7), (2, 3, 4, 5)]
+    faces = []
+    for p in pieces:
+        for i in range(1, len(p) - 1):
+            faces.append((p[0] + n, p[i] + n, p[i + 1] + n))  # front (+z), counter-clockwise
+            faces.append((p[0], p[i + 1], p[i]))  # back (-z)
+    for i in range(n):
+        j = (i + 1) % n
+        faces.append((i, j, j + n))
+        faces.append((i, j + n, i + n))
+    return verts, faces
+
+
+def write(path, mesh):
+    verts, faces = mesh
+    with open(path, "w") as f:
+        f.write("# " + os.path.basename(path) + " (bench/thin_shapes.py)\n")
+        for v in verts:
+            f.write("v %.6f %.6f %.6f\n" % v)
+        for a, b, c in faces:
+            f.write("f %d %d %d\n" % (a + 1, b + 1, c + 1))
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: python3 bench/thin_shapes.py FOLDER")
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    for name, mesh in (("thin_disc.obj", disc()), ("dumbbell.obj", dumbbell()), ("letter_t.obj", letter_t())):
+        write(os.path.join(out, name), mesh)
+        print(os.path.join(out, name), len(mesh[0]), "vertices", len(mesh[1]), "triangles")
+
+
+if __name__ == "__main__":
+    main()

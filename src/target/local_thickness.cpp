@@ -1,0 +1,91 @@
+#include "target/local_thickness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ff {
+
+namespace {
+
+// One pass of the exact 1-D squared distance transform along a line of n
+// values f (squared distances so far, infinity where unknown), in place.
+// v, z: scratch of n and n + 1.
+void distance1d(float* f, int n, size_t stride, std::vector<int>& v, std::vector<float>& z,
+                std::vector<float>& out) {
+  const float inf = std::numeric_limits<float>::infinity();
+  v.resize(size_t(n)), z.resize(size_t(n) + 1), out.resize(size_t(n));
+  int k = -1;
+  for (int q = 0; q < n; ++q) {
+    const float fq = f[size_t(q) * stride];
+    if (fq == inf) continue;
+    float s = 0.0f;
+    while (k >= 0) {
+      const int p = v[size_t(k)];
+      const float fp = f[size_t(p) * stride];
+      s = ((fq + float(q) * float(q)) - (fp + float(p) * float(p))) / (2.0f * float(q - p));
+      if (s > z[size_t(k)]) break;
+      --k;
+    }
+    ++k;
+    v[size_t(k)] = q, z[size_t(k)] = k == 0 ? -inf : s, z[size_t(k) + 1] = inf;
+  }
+  if (k < 0) return;  // nothing known on this line
+  for (int q = 0, j = 0; q < n; ++q) {
+    while (z[size_t(j) + 1] < float(q)) ++j;
+    const int p = v[size_t(j)];
+    out[size_t(q)] = float(q - p) * float(q - p) + f[size_t(p) * stride];
+  }
+  for (int q = 0; q < n; ++q) f[size_t(q) * stride] = out[size_t(q)];
+}
+
+}  // namespace
+
+std::vector<float> squaredDistanceToOutside(const VoxelGrid& g) {
+  const float inf = std::numeric_limits<float>::infinity();
+  std::vector<float> d(g.inside.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = g.inside[i] ? inf : 0.0f;
+  std::vector<int> v;
+  std::vector<float> z, out;
+  const size_t sx = 1, sy = size_t(g.nx), sz = size_t(g.nx) * size_t(g.ny);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j) distance1d(&d[g.index(0, j, k)], g.nx, sx, v, z, out);
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) distance1d(&d[g.index(i, 0, k)], g.ny, sy, v, z, out);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) distance1d(&d[g.index(i, j, 0)], g.nz, sz, v, z, out);
+  return d;
+}
+
+std::vector<float> localThickness(const VoxelGrid& g, float cap) {
+  const std::vector<float> d2 = squaredDistanceToOutside(g);
+  std::vector<float> t(d2.size(), 0.0f);
+  // Balls are stamped up to twice the radius that reaches the cap: a voxel at
+  // the surface of a thick part (its own ball small, where the surface runs
+  // diagonally to the grid) then lies in a deeper voxel's ball that reaches
+  // the cap.
+  const float cap_r = 0.5f * cap / g.voxel;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t c = g.index(i, j, k);
+        if (!g.inside[c]) continue;
+        // The largest inside ball centred here: to the surface, half a voxel
+        // short of the nearest outside centre (>= 1/2: a voxel is inside).
+        const float full = std::sqrt(d2[c]) - 0.5f, r = std::min(full, 2.0f * cap_r);
+        const float value = std::min(2.0f * full, 2.0f * cap_r);
+        const int w = int(std::floor(r));
+        const float r2 = r * r;
+        for (int c2 = std::max(0, k - w); c2 <= std::min(g.nz - 1, k + w); ++c2)
+          for (int b = std::max(0, j - w); b <= std::min(g.ny - 1, j + w); ++b)
+            for (int a = std::max(0, i - w); a <= std::min(g.nx - 1, i + w); ++a) {
+              const float dx = float(a - i), dy = float(b - j), dz = float(c2 - k);
+              const size_t q = g.index(a, b, c2);
+              if (g.inside[q] && dx * dx + dy * dy + dz * dz <= r2) t[q] = std::max(t[q], value);
+            }
+      }
+  for (float& x : t) x = std::min(x * g.voxel, cap);
+  return t;
+}
+
+}  // namespace ff

@@ -1,0 +1,29 @@
+// local_thickness.h - how thick a voxelised shape is around each of its
+// voxels: the diameter of the largest ball inside the shape that contains the
+// voxel (Hildebrand & Rüegsegger 1997's local thickness), from the Euclidean
+// distance transform of the voxel grid. Adaptive control
+// (docs/CONTROL_UNITS.md, "Thin features") reads it.
+#pragma once
+#include <vector>
+
+#include "target/target_shape.h"
+
+namespace ff {
+
+// Per voxel (grid index order): the squared distance, in voxels, from its
+// centre to the nearest outside voxel's centre; 0 outside. Exact (separable
+// lower envelopes of parabolas, Felzenszwalb & Huttenlocher 2012). The grid
+// must have outside voxels (makeVoxelGrid leaves a border of them).
+std::vector<float> squaredDistanceToOutside(const VoxelGrid& g);
+
+// Per voxel (grid index order): the local thickness in the grid's length
+// unit, at most `cap`; 0 outside. The balls are centred on voxel centres and
+// reach the shape's surface, taken half a voxel short of the nearest outside
+// voxel's centre: a slab k voxels thick has thickness k voxels for odd k and
+// k - 1 for even k (its middle lies between two voxel centres; a single
+// voxel has thickness 1 voxel). The balls are stamped up to a diameter of
+// 2 `cap` (a voxel inside a thicker part gets `cap`), which bounds the work by
+// the voxels times (2 cap / voxel)^3.
+std::vector<float> localThickness(const VoxelGrid& g, float cap);
+
+}  // namespace ff

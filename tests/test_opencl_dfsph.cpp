@@ -194,4 +194,32 @@ TEST(OpenClDfsph, RunMatchesTheCpuRunAndLosesNoParticleLaneKernels) {
   checkRun(ff::OpenClBackend::KernelVariant::Lanes);
 }
 
+// The iteration cap: with at most 2 iterations per solve the splashing dam's
+// solves hit it, each stop at the cap counts in the metrics' solver_capped,
+// and the counts are the OpenMP solver's step by step (on PoCL).
+TEST(OpenClDfsph, SolvesStoppedAtTheCapCountInTheMetrics) {
+  ff::SceneDesc scene = damScene();
+  scene.params.fluid.max_iterations = 2;
+  std::unique_ptr<ff::OpenClBackend> backend = openClBackend();
+  if (!backend) return;
+  const bool exact = ff::roundsAsTheCpuBackend(backend->deviceInfo());
+  ff::Simulation ocl(scene, std::move(backend));
+  ff::Simulation cpu(scene, std::make_unique<ff::CpuBackend>(2));
+  long capped = 0;
+  for (int i = 0; i < 40; ++i) {
+    ocl.step();
+    cpu.step();
+    const ff::StepMetrics &a = ocl.metrics(), &b = cpu.metrics();
+    capped += a.solver_capped;
+    EXPECT_LE(a.solver_capped, 2L * a.substeps) << "step " << i;
+    EXPECT_LE(a.solver_iterations, 2L * 2L * a.substeps) << "step " << i;
+    if (exact) {
+      ASSERT_EQ(a.solver_iterations, b.solver_iterations) << "step " << i;
+      ASSERT_EQ(a.solver_capped, b.solver_capped) << "step " << i;
+    }
+  }
+  std::printf("  %ld solves stopped at the cap of 2 iterations in 40 steps\n", capped);
+  EXPECT_GT(capped, 0);
+}
+
 }  // namespace

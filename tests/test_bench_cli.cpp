@@ -272,6 +272,14 @@ TEST(BenchCli, DambreakPeerGeometryUsesThePeersParticleSize) {
   // missing neighbours count in the mean density error, not here).
   EXPECT_LT(std::stod(c[14]), 0.001);
   EXPECT_EQ(std::stol(c[17]), 0L);
+  // The solver's stages are named and timed (positive ms per step).
+  for (const char* stage : {"| density | dfsph factor + neighbour cache | ",
+                            "| pressure | divergence solve | ", "| pressure | density solve | "}) {
+    const std::string row = std::string("| dambreak-dfsph | cpu | 1331 ") + stage;
+    const size_t at = r.out.find(row);
+    ASSERT_NE(at, std::string::npos) << stage << "\n" << r.out;
+    EXPECT_GT(std::stod(r.out.substr(at + row.size())), 0.0) << stage;
+  }
 }
 
 TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {

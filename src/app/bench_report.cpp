@@ -57,6 +57,16 @@ void printMarkdown(std::FILE* out, const std::string& title, const std::vector<B
     std::fprintf(out, " **%.2f** | %.2f-%.2f | %.2f | %.0f |\n", r.total.median, r.total.min, r.total.max,
                  r.mean_substeps, r.fluid > 0 ? double(r.memory_bytes) / double(r.fluid) : 0.0);
   }
+  bool stages = false;
+  for (const BenchResult& r : results) stages = stages || !r.stages.empty();
+  if (stages) {
+    std::fprintf(out, "\nStages inside the phases (ms per step, mean):\n\n");
+    std::fprintf(out, "| scene | backend | fluid | phase | stage | ms |\n|---|---|---:|---|---|---:|\n");
+    for (const BenchResult& r : results)
+      for (const StageTime& s : r.stages)
+        std::fprintf(out, "| %s | %s | %ld | %s | %s | %.3f |\n", r.scene.c_str(), r.backend.c_str(), r.fluid,
+                     s.phase.c_str(), s.name.c_str(), s.ms);
+  }
   std::fflush(out);
 }
 

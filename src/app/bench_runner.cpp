@@ -48,8 +48,10 @@ void timeSteps(Simulation& sim, int steps, BenchResult& r,
     totals.push_back(total);
     r.sum_ms += total;
     substeps += sim.metrics().substeps;
+    addStages(r.stages, sim.lastStepStageMs());
     if (each) each(sim);
   }
+  for (StageTime& s : r.stages) s.ms /= double(std::max(1, steps));
   for (size_t p = 0; p < kPhases; ++p) r.phase[p] = summarise(samples[p]);
   r.total = summarise(totals);
   r.steps = steps;

@@ -39,7 +39,8 @@ struct BenchResult {
   // (Backend::hostSyncs: blocking reads, queue waits), and how many of each.
   double reads_with = 0.0, waits_with = 0.0, reads_without = 0.0, waits_without = 0.0;
   int steps_with = 0, steps_without = 0;
-  double sum_ms = 0.0;  // the timed steps' phases, summed
+  double sum_ms = 0.0;            // the timed steps' phases, summed
+  std::vector<StageTime> stages;  // the named stages inside phases, mean ms per timed step
 };
 
 // Median, minimum and maximum of the samples (which it reorders).

@@ -156,6 +156,9 @@ int runScene(const RunOptions& o) {
   for (int p = 0; p < int(Phase::Count); ++p) {
     total += ms[size_t(p)];
     std::printf("  %-15s %8.3f\n", phaseName(Phase(p)), ms[size_t(p)] / double(std::max(1L, steps)));
+    for (const StageTime& s : sim.stageMs())  // the phase's named stages
+      if (s.phase == phaseName(Phase(p)))
+        std::printf("    %-30s %8.3f\n", s.name.c_str(), s.ms / double(std::max(1L, steps)));
   }
   std::printf("  %-15s %8.3f\n", "total", total / double(std::max(1L, steps)));
   const StepMetrics& m = sim.metrics();

@@ -34,6 +34,7 @@ class CpuBackend : public Backend {
   StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
   size_t memoryBytes() const override;
+  std::vector<StageTime> takeStageMs() override { return solver_->takeStages(); }
 
   void saveState(StateWriter& w) const override;
   void loadState(StateReader& r) override;

@@ -1,5 +1,6 @@
 #include "cpu/dfsph_solver.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -128,6 +129,13 @@ void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
   for (long gi = 0; gi < n; ++gi) body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
+using Clock = std::chrono::steady_clock;
+
+// Adds the time since t0 to the stage `name` of `phase`.
+void record(std::vector<StageTime>& stages, const char* phase, const char* name, Clock::time_point t0) {
+  addStages(stages, {{phase, name, std::chrono::duration<double, std::milli>(Clock::now() - t0).count()}});
+}
+
 void box(const ContainerDesc& c, float* lo, float* hi) {
   for (int d = 0; d < 3; ++d) lo[d] = c.min[d], hi[d] = c.max[d];
 }
@@ -153,6 +161,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   box(c, lo, hi);
   const FluidState& s = f.s;
   const long groups = long(f.groups.size() / 2);
+  const Clock::time_point t0 = Clock::now();
   const int threads = cache_.reset(size_t(groups));
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
@@ -173,6 +182,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }
   }
+  record(stages_, "density", "dfsph factor + neighbour cache", t0);
   return !bad;
 }
 
@@ -273,8 +283,11 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   const float ratio = last_dt_ > 0.0f ? dt / last_dt_ : 1.0f;
   last_dt_ = dt;
   // Divergence-free solve on the velocities of the last substep.
+  Clock::time_point t0 = Clock::now();
   last_div_ =
       iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, kv_);
+  record(stages_, "pressure", "divergence solve", t0);
+  t0 = Clock::now();
   // Every other acceleration of the substep and the walls' support in the
   // pressure gradient it causes, then the constant-density solve.
   float lo[3], hi[3];
@@ -289,6 +302,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
     ux_[q] += dt * (acc[0] + sup[0]), uy_[q] += dt * (acc[1] + sup[1]), uz_[q] += dt * (acc[2] + sup[2]);
   }
   last_dens_ = iterate(f, p, true, dt, double(p.density_tolerance), 2, kWarmStart * ratio * ratio, kd_);
+  record(stages_, "pressure", "density solve", t0);
   // The accelerations that take v to the solved velocities, and the pressure
   // p = rho0 (kd / dt^2 + kv / dt) of both solves.
   const float inv_dt = 1.0f / dt, rho0 = rho0_;

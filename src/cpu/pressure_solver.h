@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "core/stage_time.h"
 #include "core/state_io.h"
 #include "cpu/fluid_cpu.h"
 
@@ -40,9 +41,16 @@ class PressureSolver {
     stats_ = SolverStats();
     return s;
   }
+  // The named stages' times since the last call (Backend::takeStageMs).
+  std::vector<StageTime> takeStages() {
+    std::vector<StageTime> s;
+    s.swap(stages_);
+    return s;
+  }
 
  protected:
   SolverStats stats_;
+  std::vector<StageTime> stages_;
 };
 
 // Weakly compressible SPH with p = k (rho - rho0) (Mueller et al. 2003).

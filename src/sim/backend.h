@@ -11,6 +11,7 @@
 #include "core/fluid_state.h"
 #include "core/metrics.h"
 #include "core/params.h"
+#include "core/stage_time.h"
 #include "core/state_io.h"
 #include "scene/scene.h"
 
@@ -73,6 +74,9 @@ class Backend {
   // The OpenMP backend always runs a phase to completion. Off by default
   // (flowform bench and `run --profile` switch it on).
   virtual void setProfiling(bool on) { (void)on; }
+  // The named stages timed inside phases since the last call (a pressure
+  // solver's solves; empty where a backend names none).
+  virtual std::vector<StageTime> takeStageMs() { return {}; }
 
   // Host synchronisations so far: blocking reads of device memory and waits
   // for the device's queue to finish (the OpenMP backend has none).

@@ -163,6 +163,8 @@ void Simulation::step() {
     timed(Phase::Integrate, [&] { backend_->integrate(dt); });
     timed(Phase::ShapeMatching, [&] { backend_->shapeMatching(dt); });
   }
+  last_stage_ms_ = backend_->takeStageMs();
+  addStages(stage_ms_, last_stage_ms_);
   // One check per step with metrics (on OpenCL one int read back): the phase
   // that first wrote a NaN or Inf since the last check, in phase and substep order.
   const long step = step_;

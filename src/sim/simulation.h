@@ -69,6 +69,9 @@ class Simulation {
   const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
   // Milliseconds per phase of the last step alone (all its substeps).
   const std::array<double, size_t(Phase::Count)>& lastStepMs() const { return last_step_ms_; }
+  // The named stages inside phases (Backend::takeStageMs), accumulated and of the last step.
+  const std::vector<StageTime>& stageMs() const { return stage_ms_; }
+  const std::vector<StageTime>& lastStepStageMs() const { return last_stage_ms_; }
 
   // The fluid of a scene, block by block, on cubic lattices.
   static FluidState makeFluid(const SceneDesc& scene);
@@ -98,6 +101,7 @@ class Simulation {
   StepMetrics metrics_;
   std::array<double, size_t(Phase::Count)> phase_ms_{};
   std::array<double, size_t(Phase::Count)> last_step_ms_{};
+  std::vector<StageTime> stage_ms_, last_stage_ms_;
 };
 
 }  // namespace ff

@@ -295,6 +295,19 @@ void timingSection(ViewerUi& ui, ViewerSession& session) {
       ImGui::Text("%.3f", sim.lastStepMs()[p]);
       ImGui::TableNextColumn();
       ImGui::Text("%.3f", ui.phase_ms[p].value);
+      for (const StageTime& s : sim.lastStepStageMs()) {  // the phase's named stages (run mean)
+        if (s.phase != phaseName(Phase(p))) continue;
+        double mean = 0.0;
+        for (const StageTime& t : sim.stageMs())
+          if (t.phase == s.phase && t.name == s.name) mean = t.ms / double(std::max(1L, sim.stepCount()));
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("  %s", s.name.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", s.ms);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", mean);
+      }
     }
     ImGui::TableNextRow();
     ImGui::TableNextColumn();

@@ -1,17 +1,28 @@
 // Host synchronisations of the OpenCL step loop: with profiling off (the
-// default) a step whose metrics are not requested reads nothing back and
-// waits for nothing; a step with metrics reads its sums and the NaN record.
+// default) a step whose metrics are not requested waits for nothing, and it
+// reads nothing back but what its pressure solver must: nothing for WCSPH
+// (the `paper` preset), the stopping test of each DFSPH solve for `water`
+// (the default), one small read per batch of iterations (host/dfsph_cl.h);
+// a step with metrics reads its sums and the NaN record.
 #include <gtest/gtest.h>
 
 #include <memory>
 
+#include "core/params.h"
 #include "host/backend_opencl.h"
+#include "host/dfsph_cl.h"
 #include "sim/simulation.h"
 
 namespace {
 
-TEST(OpenClHostSyncs, NoBlockingReadInStepsWithoutMetrics) {
+// The default scene on `preset`: 20 steps with metrics every 5th; checks the
+// host syncs of each step against what it may do.
+void checkSyncs(const std::string& preset) {
   ff::SceneDesc scene = ff::defaultScene();
+  scene.preset = preset;
+  scene.params = ff::presetParams(preset);
+  const bool dfsph = scene.params.fluid.solver == ff::PressureSolverKind::Dfsph;
+  const int max_it = scene.params.fluid.max_iterations, batch = ff::ClDfsphSolver::kIterationBatch;
   ff::Simulation sim(scene, std::make_unique<ff::OpenClBackend>());
   sim.setMetricsEvery(5);
   int with = 0, without = 0;
@@ -24,9 +35,15 @@ TEST(OpenClHostSyncs, NoBlockingReadInStepsWithoutMetrics) {
     if (sim.metricsFresh()) {
       ++with;
       EXPECT_GT(after.reads, before.reads) << "step " << s << ": the metrics are read back";
-    } else {
-      ++without;
-      EXPECT_EQ(after.reads, before.reads) << "step " << s << ": no metrics asked, nothing to read";
+      continue;
+    }
+    ++without;
+    const long reads = after.reads - before.reads, solves = 2L * sim.metrics().substeps;
+    if (!dfsph) {
+      EXPECT_EQ(reads, 0) << "step " << s << ": no metrics asked, nothing to read";
+    } else {  // each of the two solves per substep: its first test, then one per batch
+      EXPECT_GE(reads, solves) << "step " << s;
+      EXPECT_LE(reads, solves * (1 + (max_it + batch - 1) / batch)) << "step " << s;
     }
   }
   EXPECT_EQ(with, 4);
@@ -41,6 +58,14 @@ TEST(OpenClHostSyncs, NoBlockingReadInStepsWithoutMetrics) {
   const ff::Backend::HostSyncs before = sim.backend().hostSyncs();
   sim.step();
   EXPECT_GE(sim.backend().hostSyncs().waits - before.waits, long(ff::Phase::Metrics));
+}
+
+TEST(OpenClHostSyncs, NoBlockingReadInStepsWithoutMetrics) {
+  checkSyncs("paper");
+}
+
+TEST(OpenClHostSyncs, DfsphReadsOnlyItsStoppingTests) {
+  checkSyncs("water");
 }
 
 }  // namespace

@@ -426,8 +426,13 @@ TEST(Params, PresetsAndRestSpacing) {
   EXPECT_FLOAT_EQ(paper.control.radius, 0.03f);
   EXPECT_FLOAT_EQ(paper.shape.stiffness, 0.3f);
   EXPECT_NEAR(paper.fluid.restSpacing(), 0.0062996f, 1e-6f);
-  ff::Params def = ff::presetParams("default");
-  EXPECT_FLOAT_EQ(def.fluid.gas_constant, paper.fluid.gas_constant);
+  // The default is the incompressible water (issue 9), the paper's spacing.
+  const ff::Params def = ff::presetParams("default"), water = ff::presetParams("water");
+  EXPECT_EQ(def.fluid.solver, ff::PressureSolverKind::Dfsph);
+  EXPECT_FLOAT_EQ(def.fluid.rest_density, 1000.0f);
+  EXPECT_FLOAT_EQ(def.fluid.particle_mass, water.fluid.particle_mass);
+  EXPECT_FLOAT_EQ(def.fluid.viscosity, water.fluid.viscosity);
+  EXPECT_NEAR(def.fluid.restSpacing(), paper.fluid.restSpacing(), 1e-7f);
   EXPECT_NO_THROW(ff::validateParams(paper, "paper"));
   EXPECT_NO_THROW(ff::validateParams(def, "default"));
 }

@@ -99,10 +99,9 @@ Params waterParams() {
 Params presetParams(const std::string& name) {
   // The paper's appendix values; params.h holds them as the defaults.
   if (name == "paper") return Params{};
-  // The engine's recommended set: the paper's until DFSPH holds a column at
-  // rest (docs/PRESETS.md).
-  if (name == "default") return Params{};
-  if (name == "water") return waterParams();
+  // The engine's recommended set: the incompressible water (issue 9,
+  // docs/PRESETS.md).
+  if (name == "default" || name == "water") return waterParams();
   throw Error("unknown parameter preset '" + name + "' (known: paper, default, water)");
 }
 

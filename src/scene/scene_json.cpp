@@ -523,7 +523,8 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
     scene.name = r.string(root["name"], "name");
     if (scene.name.empty()) r.fail("name", "must not be empty");
   }
-  if (root.contains("preset")) scene.preset = r.string(root["preset"], "preset");
+  // A scene that names no preset gets the engine's recommended one.
+  scene.preset = root.contains("preset") ? r.string(root["preset"], "preset") : "default";
   try {
     scene.params = presetParams(scene.preset);
   } catch (const Error& e) {

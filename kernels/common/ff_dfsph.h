@@ -263,9 +263,8 @@ FF_FN float ff_dfsph_increment(float b, float alpha) {
   return b * alpha;
 }
 
-/* ---- The per-particle steps that src/cpu/dfsph_solver.cpp still writes
- * inline, as bodies for the OpenCL kernels (kernels/dfsph_*.cl) and, once it
- * calls them, the OpenMP solver; the same operations in the same order. ---- */
+/* ---- The per-particle steps of both solvers' outer loop: the OpenMP
+ * solver (src/cpu/dfsph_solver.cpp) and the kernels (kernels/dfsph_*.cl). ---- */
 
 /* Whether the divergence solve runs at a particle: its `neighbours` within H
  * plus the walls' density share counted as the neighbours of the full support

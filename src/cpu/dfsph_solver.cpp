@@ -178,7 +178,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
       wgx_[i] = wg[0], wgy_[i] = wg[1], wgz_[i] = wg[2];
       f.rho[i] = rho0 * rho_hat;
       const float share = rho_hat - vol * sums[l];  // the walls' share
-      bulk_[i] = sums[40 + l] + share * full >= kBulkShare * full;
+      bulk_[i] = uint8_t(ff_dfsph_bulk(sums[40 + l], share, full, kBulkShare));
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }
   }
@@ -297,9 +297,9 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   for (long i = 0; i < n; ++i) {
     const size_t q = size_t(i);
     const float pos[3] = {s.x[q], s.y[q], s.z[q]}, acc[3] = {f.ax[q], f.ay[q], f.az[q]};
-    float sup[3];
-    ff_dfsph_wall_support(pos, lo, hi, spacing, vol, H, inv_h, acc, sup);
-    ux_[q] += dt * (acc[0] + sup[0]), uy_[q] += dt * (acc[1] + sup[1]), uz_[q] += dt * (acc[2] + sup[2]);
+    float u[3] = {ux_[q], uy_[q], uz_[q]};
+    ff_dfsph_predict(pos, lo, hi, spacing, vol, H, inv_h, acc, dt, u);
+    ux_[q] = u[0], uy_[q] = u[1], uz_[q] = u[2];
   }
   last_dens_ = iterate(f, p, true, dt, double(p.density_tolerance), 2, kWarmStart * ratio * ratio, kd_);
   record(stages_, "pressure", "density solve", t0);
@@ -312,7 +312,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
     const size_t q = size_t(i);
     f.ax[q] = (ux_[q] - s.vx[q]) * inv_dt, f.ay[q] = (uy_[q] - s.vy[q]) * inv_dt,
     f.az[q] = (uz_[q] - s.vz[q]) * inv_dt;
-    f.p[q] = rho0 * (kd_[q] * inv_dt + kv_[q]) * inv_dt;
+    f.p[q] = ff_dfsph_pressure(kd_[q], kv_[q], inv_dt, rho0);
     bad |= std::isfinite(f.ax[q]) && std::isfinite(f.ay[q]) && std::isfinite(f.az[q]) && std::isfinite(f.p[q])
                ? 0
                : 1;

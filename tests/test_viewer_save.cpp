@@ -17,6 +17,7 @@
 
 #include "cli_run.h"
 #include "scene/scene.h"
+#include "xvfb_run.h"
 
 namespace {
 
@@ -25,13 +26,8 @@ namespace fs = std::filesystem;
 const std::string kExe = std::string("'") + FF_FLOWFORM_EXE + "'";
 
 // As in test_viewer_xvfb.cpp: a display number of its own for each test.
-std::string xvfbRun(int test) {
-  const int first = 1800 + int(::getpid() % 400) * 4 + test;
-  return "timeout 180 xvfb-run -a -n " + std::to_string(first) + " -s '-screen 0 1024x768x24' ";
-}
-
-bool haveXvfb() {
-  return fftest::runShell("command -v xvfb-run && command -v xauth").code == 0;
+int firstDisplay(int test) {
+  return 1800 + int(::getpid() % 400) * 4 + test;
 }
 
 // 1000 particles resting on the floor of a 0.2 m box, a sphere target from the start.
@@ -77,7 +73,7 @@ long controlCountOfRun(const fs::path& scene, const fs::path& csv) {
 }
 
 TEST(ViewerSave, AScriptedSaveIsWhatRunAndViewStartFrom) {
-  if (!haveXvfb())
+  if (!fftest::haveXvfb())
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
   const fftest::TempDir dir("view_save");
@@ -95,9 +91,10 @@ TEST(ViewerSave, AScriptedSaveIsWhatRunAndViewStartFrom) {
                                      << R"("},
     {"at": 0.04, "quit": true}
   ]})";
-  fftest::CliResult r = fftest::runShell(xvfbRun(1) + kExe + " view '" + (dir / "small.json").string() +
-                                         "' --backend cpu --threads 2 --script '" +
-                                         (dir / "script.json").string() + "' --width 400 --height 300");
+  fftest::CliResult r = fftest::runUnderXvfb(
+      dir, firstDisplay(1),
+      kExe + " view '" + (dir / "small.json").string() + "' --backend cpu --threads 2 --script '" +
+          (dir / "script.json").string() + "' --width 400 --height 300");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("scene saved to " + saved.string()), std::string::npos) << r.out;
   ASSERT_TRUE(fs::exists(saved)) << r.out;
@@ -143,9 +140,9 @@ TEST(ViewerSave, AScriptedSaveIsWhatRunAndViewStartFrom) {
   std::ofstream(dir / "resave.json") << R"({"actions": [{"at": 0, "save": ")" << again.string()
                                      << R"("}, {"at": 0, "quit": true}]})";
   const std::string before = readAll(saved);
-  r = fftest::runShell(xvfbRun(3) + kExe + " view '" + saved.string() +
-                       "' --backend cpu --threads 2 --script '" + (dir / "resave.json").string() +
-                       "' --width 400 --height 300");
+  r = fftest::runUnderXvfb(dir, firstDisplay(3),
+                           kExe + " view '" + saved.string() + "' --backend cpu --threads 2 --script '" +
+                               (dir / "resave.json").string() + "' --width 400 --height 300");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(readAll(saved), before);
   const ff::SceneDesc t = ff::loadScene(again.string());
@@ -165,9 +162,10 @@ TEST(ViewerSave, AScriptedSaveIsWhatRunAndViewStartFrom) {
   // the action and the file; the file keeps what it held.
   std::ofstream(dir / "over.json") << R"({"actions": [{"at": 0, "save": ")" << saved.string()
                                    << R"("}, {"at": 0, "quit": true}]})";
-  r = fftest::runShell(xvfbRun(3) + kExe + " view '" + (dir / "small.json").string() +
-                       "' --backend cpu --threads 2 --script '" + (dir / "over.json").string() +
-                       "' --width 400 --height 300");
+  r = fftest::runUnderXvfb(dir, firstDisplay(3),
+                           kExe + " view '" + (dir / "small.json").string() +
+                               "' --backend cpu --threads 2 --script '" + (dir / "over.json").string() +
+                               "' --width 400 --height 300");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("over.json: actions[0] (save): " + saved.string() +
                        ": a file of that name exists; not overwritten"),

@@ -15,6 +15,7 @@
 
 #include "cli_run.h"
 #include "test_scenes.h"
+#include "xvfb_run.h"
 
 namespace {
 
@@ -33,16 +34,14 @@ void writeSmallScene(const fs::path& file) {
 
 const std::string kExe = std::string("'") + FF_FLOWFORM_EXE + "'";
 
-// xvfb-run with a time limit. -a takes the first free display from -n on;
-// starting each test (and process) elsewhere keeps tests run in parallel
-// from racing for the same display number.
-std::string xvfbRun(int test) {
-  const int first = 200 + int(::getpid() % 400) * 4 + test;
-  return "timeout 180 xvfb-run -a -n " + std::to_string(first) + " -s '-screen 0 1024x768x24' ";
+// The first display number xvfb-run tries for a test: starting each test (and
+// process) elsewhere keeps tests run in parallel from racing for the same one.
+int firstDisplay(int test) {
+  return 200 + int(::getpid() % 400) * 4 + test;
 }
 
 TEST(ViewerXvfb, ScriptChangesTheTargetSavesAScreenshotAndQuits) {
-  if (shell("command -v xvfb-run && command -v xauth").code != 0)
+  if (!fftest::haveXvfb())
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
   const fftest::TempDir dir("view_xvfb");
@@ -56,9 +55,10 @@ TEST(ViewerXvfb, ScriptChangesTheTargetSavesAScreenshotAndQuits) {
                                             R"("},
     {"at": 0.1, "quit": true}
   ]})";
-  const Result r = shell(xvfbRun(0) + kExe + " view '" + (dir / "small.json").string() +
-                         "' --backend cpu --threads 2 --script '" + (dir / "script.json").string() +
-                         "' --width 640 --height 480");
+  const Result r = fftest::runUnderXvfb(dir, firstDisplay(0),
+                                        kExe + " view '" + (dir / "small.json").string() +
+                                            "' --backend cpu --threads 2 --script '" +
+                                            (dir / "script.json").string() + "' --width 640 --height 480");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("script t=0.040 s: target"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("script t=0.100 s: quit"), std::string::npos) << r.out;
@@ -85,7 +85,7 @@ TEST(ViewerXvfb, ScriptChangesTheTargetSavesAScreenshotAndQuits) {
 }
 
 TEST(ViewerXvfb, AScriptActionThatFailsWhileRunningEndsTheViewerWithStatus1) {
-  if (shell("command -v xvfb-run && command -v xauth").code != 0)
+  if (!fftest::haveXvfb())
     FAIL() << "this test runs `flowform view` under xvfb-run: install xvfb and xauth "
               "(Debian/Ubuntu: apt-get install xvfb xauth)";
   const fftest::TempDir dir("view_xvfb_fail");
@@ -95,9 +95,10 @@ TEST(ViewerXvfb, AScriptActionThatFailsWhileRunningEndsTheViewerWithStatus1) {
     {"at": 0.008, "region": {"box": {"min": [0.0, 0.15, 0.0], "max": [0.05, 0.2, 0.05]}}},
     {"at": 0.02, "quit": true}
   ]})";
-  const Result r = shell(xvfbRun(2) + kExe + " view '" + (dir / "small.json").string() +
-                         "' --backend cpu --threads 2 --script '" + (dir / "late.json").string() +
-                         "' --width 400 --height 300");
+  const Result r = fftest::runUnderXvfb(dir, firstDisplay(2),
+                                        kExe + " view '" + (dir / "small.json").string() +
+                                            "' --backend cpu --threads 2 --script '" +
+                                            (dir / "late.json").string() + "' --width 400 --height 300");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("late.json: actions[0] (region): "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("holds no fluid"), std::string::npos) << r.out;

@@ -1,9 +1,12 @@
 #include "host/backend_opencl.h"
 
+#include <chrono>
+
 #include "host/backend_factory.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
 #include "host/dfsph_cl.h"
+#include "host/forces/cl_forces.h"
 
 namespace ff {
 
@@ -11,20 +14,10 @@ OpenClBackend::Impl::Impl(int device_index)
     : ctx(device_index), program(buildKernelProgram(ctx, embeddedKernelFiles())), grids(ctx, program) {
   reorder = makeKernel(program, "grid_reorder_fluid", ctx);
   density = makeKernel(program, "density", ctx);
-  forces = makeKernel(program, "forces", ctx);
   pressure_wcsph = makeKernel(program, "pressure_wcsph", ctx);
   integrate = makeKernel(program, "integrate", ctx);
-  control_scale = makeKernel(program, "control_scale", ctx);
-  control_scale_by_lane = makeKernel(program, "control_scale_by_lane", ctx, 256, 4 * sizeof(float));
-  control_gather = makeKernel(program, "control_gather", ctx);
-  control_forces = makeKernel(program, "control_forces", ctx);
-  control_recapture_centre = makeKernel(program, "control_recapture_centre", ctx);
-  recapture_seed = makeKernel(program, "recapture_seed", ctx);
-  recapture_flood = makeKernel(program, "recapture_flood", ctx);
   density_lanes = makeKernel(program, "density_lanes", ctx, kLaneGroupCap);
-  forces_lanes = makeKernel(program, "forces_lanes", ctx, kLaneGroupCap);
   pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
-  control_forces_lanes = makeKernel(program, "control_forces_lanes", ctx, kLaneGroupCap);
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
   sm_frames_by_lane = makeKernel(program, "sm_cluster_frames_by_lane", ctx, 256, 15 * sizeof(float));
   sm_particles = makeKernel(program, "sm_particles", ctx);
@@ -41,7 +34,8 @@ OpenClBackend::Impl::Impl(int device_index)
 }
 
 OpenClBackend::OpenClBackend(int device_index)
-    : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })) {
+    : d_(clGuard("starting the backend", [&] { return std::make_unique<Impl>(device_index); })),
+      forces_(clGuard("making the non-pressure forces", [&] { return makeClForces(d_->program, d_->ctx); })) {
   const std::string k = kernelChoice();
   setKernelVariant(k == "scalar"  ? KernelVariant::Scalar
                    : k == "lanes" ? KernelVariant::Lanes
@@ -116,11 +110,13 @@ ClFluidRefs OpenClBackend::fluidRefs() {
 }
 
 void OpenClBackend::setParams(const Params& params) {
-  if (params.fluid.solver == PressureSolverKind::Dfsph && !dfsph_)
+  if (params.fluid.solver == PressureSolverKind::Dfsph && !dfsph_) {
     dfsph_ = clGuard("starting the DFSPH solver",
                      [&] { return std::make_unique<ClDfsphSolver>(d_->program, d_->ctx); });
-  else if (params.fluid.solver != PressureSolverKind::Dfsph)
+    dfsph_->setProfiling(profiling_);
+  } else if (params.fluid.solver != PressureSolverKind::Dfsph) {
     dfsph_.reset();
+  }
   if (params.fluid.smoothing_radius != params_.fluid.smoothing_radius) grid_state_ = GridState::Stale;
   params_ = params;
 }
@@ -222,24 +218,74 @@ void OpenClBackend::computeDensity() {
   });
 }
 
-void OpenClBackend::computeForces() {
+template <class F>
+void OpenClBackend::runForces(Phase of, Phase timed_in, int tag, F&& f) {
+  const ClFluidRefs refs = fluidRefs();
+  ClForceContext c{refs, *d_, params_, box_, control_, nc_, masked_, tag};
+  for (const auto& force : forces_) {
+    if (force->phase() != of) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    f(*force, c);
+    if (!profiling_) continue;
+    finishQueue(d_->queue());
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    addStages(stages_, {{phaseName(timed_in), force->name(), ms}});
+  }
+}
+
+void OpenClBackend::computeForces(float dt) {
   clGuard("phase 'forces'", [&] {
     Impl& d = *d_;
     const int tag = beginPhase(Phase::Forces);
-    const FluidParams& f = params_.fluid;
-    const DeviceGrid& g = d.fluid_h;
-    const cl_float4 gravity = f4(f.gravity[0], f.gravity[1], f.gravity[2], 0.0f);
-    if (lanes_)
-      launch(d.queue(), d.forces_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(),
-             d.rho.get(), cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell,
-             f.smoothing_radius, f.particle_mass, f.viscosity, gravity, d.ax.get(), d.ay.get(), d.az.get(),
-             d.bad.get(), cl_int(tag));
-    else
-      launch(d.queue(), d.forces, n_, d.X(), d.Y(), d.Z(), d.VX(), d.VY(), d.VZ(), d.rho.get(), cl_uint(n_),
-             g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass, f.viscosity,
-             gravity, d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+    for (DeviceBuffer* b : {&d.ax, &d.ay, &d.az}) fillBuffer(d.queue(), *b, 0.0f, n_);
+    runForces(Phase::Forces, Phase::Forces, tag, [dt](ClForce& f, ClForceContext& c) { f.apply(c, dt); });
     endPhase();
   });
+}
+
+void OpenClBackend::computeControlScale() {
+  clGuard("phase 'control_scale'", [&] {
+    const int tag = beginPhase(Phase::ControlScale);
+    runForces(Phase::ControlForces, Phase::ControlScale, tag,
+              [](ClForce& f, ClForceContext& c) { f.prepare(c); });
+    endPhase();
+  });
+}
+
+void OpenClBackend::applyControlForces(float dt) {
+  clGuard("phase 'control_forces'", [&] {
+    const int tag = beginPhase(Phase::ControlForces);
+    runForces(Phase::ControlForces, Phase::ControlForces, tag,
+              [dt](ClForce& f, ClForceContext& c) { f.apply(c, dt); });
+    endPhase();
+  });
+}
+
+void OpenClBackend::addForce(std::unique_ptr<ClForce> force) {
+  forces_.push_back(std::move(force));
+}
+
+const ClContext& OpenClBackend::context() const {
+  return d_->ctx;
+}
+
+void OpenClBackend::setProfiling(bool on) {
+  profiling_ = on;
+  if (dfsph_) dfsph_->setProfiling(on);
+}
+
+std::vector<std::string> OpenClBackend::forceNames() const {
+  std::vector<std::string> names;
+  for (const auto& f : forces_) names.push_back(f->name());
+  return names;
+}
+
+std::vector<StageTime> OpenClBackend::takeStageMs() {
+  std::vector<StageTime> s;
+  s.swap(stages_);
+  if (dfsph_) addStages(s, dfsph_->takeStages());
+  return s;
 }
 
 void OpenClBackend::solvePressure(float dt) {
@@ -374,7 +420,7 @@ OpenClBackend::GridSnapshot OpenClBackend::readGrid(GridKind kind) {
 std::vector<uint32_t> OpenClBackend::readRecaptureField() {
   return clGuard("reading the recapture's field", [&] {
     std::vector<uint32_t> seeds;
-    if (rfield_cells_ > 0) download(d_->queue(), d_->rseeds[0], rfield_cells_, seeds);
+    if (d_->rfield_cells > 0) download(d_->queue(), d_->rseeds[0], d_->rfield_cells, seeds);
     return seeds;
   });
 }

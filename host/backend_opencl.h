@@ -25,6 +25,7 @@
 namespace ff {
 
 class ClDfsphSolver;
+class ClForce;
 struct ClFluidRefs;
 
 class OpenClBackend : public Backend {
@@ -44,7 +45,7 @@ class OpenClBackend : public Backend {
 
   void buildGrid() override;
   void computeDensity() override;
-  void computeForces() override;
+  void computeForces(float dt = 0.0f) override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
   void solvePressure(float dt) override;
@@ -52,7 +53,9 @@ class OpenClBackend : public Backend {
   int shapeMatching(float dt) override;
   StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
-  void setProfiling(bool on) override { profiling_ = on; }
+  void setProfiling(bool on) override;
+  std::vector<StageTime> takeStageMs() override;
+  std::vector<std::string> forceNames() const override;
   HostSyncs hostSyncs() const override { return clHostSyncs(); }
   size_t memoryBytes() const override;
 
@@ -88,25 +91,35 @@ class OpenClBackend : public Backend {
   bool usesLanes() const { return lanes_; }
   // The DFSPH solver when params.fluid.solver is "dfsph" (else null), for tests.
   const ClDfsphSolver* dfsph() const { return dfsph_.get(); }
+  // Appends a non-pressure force after the registered ones (makeClForces),
+  // e.g. a test's own force.
+  void addForce(std::unique_ptr<ClForce> force);
+
+  struct Impl;  // device buffers and kernels (host/backend_opencl_impl.h; the forces use them)
+  const ClContext& context() const;
 
  private:
-  struct Impl;              // device buffers and kernels
   int beginPhase(Phase p);  // returns the phase's non-finite tag
   void endPhase();          // waits for the phase's kernels when profiling
   void runShapeMatchStep(int tag);
   void uploadControl();
+  // Runs f(force, context) for each force of phase `of`; while profiling,
+  // times each as a stage of phase `timed_in`.
+  template <class F>
+  void runForces(Phase of, Phase timed_in, int tag, F&& f);
 
   ClFluidRefs fluidRefs();
 
   std::unique_ptr<Impl> d_;
-  std::unique_ptr<ClDfsphSolver> dfsph_;  // params.fluid.solver "dfsph" (null: WCSPH)
+  std::vector<std::unique_ptr<ClForce>> forces_;  // the non-pressure forces, in order
+  std::vector<StageTime> stages_;                 // the forces' times (while profiling) since takeStageMs
+  std::unique_ptr<ClDfsphSolver> dfsph_;          // params.fluid.solver "dfsph" (null: WCSPH)
   Params params_;
   ContainerDesc box_;
   size_t n_ = 0;        // fluid particles
   ControlSet control_;  // rest shape and clusters; positions and velocities live on the device
   size_t nc_ = 0, nclusters_ = 0;
-  size_t rfield_cells_ = 0;  // cells of the recapture's field (rseeds[0]) after the last control forces
-  double clock_ = 0.0;       // shape-matching time not yet consumed
+  double clock_ = 0.0;  // shape-matching time not yet consumed
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;
   bool masked_ = false;  // setControlledFluid gave a mask (else all the fluid is controlled)

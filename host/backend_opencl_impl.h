@@ -18,14 +18,12 @@ struct OpenClBackend::Impl {
   ClContext ctx;
   cl::Program program;
   GridBuilder grids;
-  ClKernel reorder, density, forces, pressure_wcsph, integrate;
-  ClKernel control_scale, control_gather, control_forces, control_recapture_centre, sm_frames, sm_particles;
-  ClKernel recapture_seed, recapture_flood;  // the recapture's field of targets (recapture_field.cl)
-  ClKernel control_scale_by_lane;            // 8 work-items per control particle (GPUs)
-  ClKernel sm_frames_by_lane;                // 8 work-items per shape-matching cluster (GPUs)
-  ClKernel density_lanes, forces_lanes, pressure_wcsph_lanes,
-      control_forces_lanes;  // 8 particles per work-item
-  ClKernel m_iou_lanes;      // 8 voxels per work-item
+  // The non-pressure forces' kernels belong to their plug-ins (host/forces/).
+  ClKernel reorder, density, pressure_wcsph, integrate;
+  ClKernel sm_frames, sm_particles;
+  ClKernel sm_frames_by_lane;                    // 8 work-items per shape-matching cluster (GPUs)
+  ClKernel density_lanes, pressure_wcsph_lanes;  // 8 particles per work-item
+  ClKernel m_iou_lanes;                          // 8 voxels per work-item
   ClKernel m_fluid, m_coverage, m_com, m_apq, m_iou, m_shares;
 
   // Fluid, double-buffered for the reorder: [cur] holds the current state.
@@ -40,8 +38,9 @@ struct OpenClBackend::Impl {
   DeviceBuffer crs;                            // radius scales (adaptive control)
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
   DeviceBuffer sr2, scoef;                     // their own radius squared and poly6 coefficient
-  DeviceBuffer rcentre;    // the recapture's centre (xyz), fade and aim (control_forces.cl)
-  DeviceBuffer rseeds[2];  // the recapture's field of targets and its flooding scratch
+  DeviceBuffer rcentre;     // the recapture's centre (xyz), fade and aim (control_forces.cl)
+  DeviceBuffer rseeds[2];   // the recapture's field of targets and its flooding scratch
+  size_t rfield_cells = 0;  // cells of the field (rseeds[0]) after the last control forces
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;

@@ -1,6 +1,7 @@
 #include "host/dfsph_cl.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "core/error.h"
 #include "host/backend_opencl_impl.h"
@@ -17,6 +18,11 @@ constexpr float kBulkShare = 0.6f;
 size_t sourceGroups(size_t n, size_t local) {
   const size_t g = (n + local - 1) / local;
   return g < 1 ? 1 : (g > 64 ? 64 : g);
+}
+
+double nowMs() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace
@@ -58,10 +64,19 @@ void ClDfsphSolver::ensure(const ClFluidRefs& f) {
   sized_ = true;
 }
 
+void ClDfsphSolver::record(const ClFluidRefs& f, const char* phase, const char* name, double* t0) {
+  if (!profiling_) return;
+  finishQueue(*f.queue);
+  const double t = nowMs();
+  addStages(stages_, {{phase, name, t - *t0}});
+  *t0 = t;
+}
+
 void ClDfsphSolver::computeDensity(const ClFluidRefs& f, const FluidParams& p, const ContainerDesc& box,
                                    int tag) {
   ensure(f);
   if (f.n == 0) return;
+  double t0 = nowMs();
   FfDfsphArgs& a = args_;
   a.h = p.smoothing_radius;
   a.inv_h = 1.0f / a.h;
@@ -87,6 +102,7 @@ void ClDfsphSolver::computeDensity(const ClFluidRefs& f, const FluidParams& p, c
   else
     launch(*f.queue, factor_, f.n, *f.x, *f.y, *f.z, cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(),
            a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), bulk_.get(), *f.bad, cl_int(tag));
+  record(f, "density", "dfsph factor", &t0);
 }
 
 void ClDfsphSolver::sources(const ClFluidRefs& f, bool density, float dt, bool gated) {
@@ -155,6 +171,7 @@ void ClDfsphSolver::solve(const ClFluidRefs& f, const FluidParams& p, float dt, 
   if (f.n == 0) return;
   cl::CommandQueue& q = *f.queue;
   const size_t bytes = f.n * sizeof(float);
+  double t0 = nowMs();
   rho0_ = p.rest_density;
   q.enqueueCopyBuffer(*f.vx, ux_.get(), 0, 0, bytes);
   q.enqueueCopyBuffer(*f.vy, uy_.get(), 0, 0, bytes);
@@ -164,6 +181,7 @@ void ClDfsphSolver::solve(const ClFluidRefs& f, const FluidParams& p, float dt, 
   last_dt_ = dt;
   // Divergence-free solve on the velocities of the last substep.
   last_div_ = iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, 1);
+  record(f, "pressure", "divergence solve", &t0);
   // Every other acceleration of the substep and the walls' support, then the
   // constant-density solve.
   launch(q, predict_, f.n, *f.x, *f.y, *f.z, ux_.get(), uy_.get(), uz_.get(), *f.ax, *f.ay, *f.az,
@@ -171,6 +189,7 @@ void ClDfsphSolver::solve(const ClFluidRefs& f, const FluidParams& p, float dt, 
   last_dens_ = iterate(f, p, true, dt, double(p.density_tolerance), 2, kWarmStart * ratio * ratio, 0);
   launch(q, finish_, f.n, ux_.get(), uy_.get(), uz_.get(), *f.vx, *f.vy, *f.vz, k_[kcur_][0].get(),
          k_[kcur_][1].get(), cl_uint(f.n), 1.0f / dt, rho0_, *f.ax, *f.ay, *f.az, *f.p, *f.bad, cl_int(tag));
+  record(f, "pressure", "density solve", &t0);
 }
 
 void ClDfsphSolver::reorder(const ClFluidRefs& f) {

@@ -11,8 +11,10 @@
 // each batch; the iterations enqueued past the stop do nothing.
 #pragma once
 #include <CL/opencl.hpp>
+#include <vector>
 
 #include "core/params.h"
+#include "core/stage_time.h"
 #include "ff_dfsph.h"
 #include "host/cl_context.h"
 #include "host/cl_kernel.h"
@@ -48,6 +50,15 @@ class ClDfsphSolver {
   // The grid phase reordered the fluid by f.grid->order: the warm starts follow.
   void reorder(const ClFluidRefs& f);
 
+  // While on, each stage (the factor, the divergence solve, the density
+  // solve) waits for its kernels and is timed, as the OpenMP solver's stages.
+  void setProfiling(bool on) { profiling_ = on; }
+  // The stages' times since the last call (empty unless profiling).
+  std::vector<StageTime> takeStages() {
+    std::vector<StageTime> s;
+    s.swap(stages_);
+    return s;
+  }
   // Iterations and capped solves since the last call.
   void take(long& iterations, long& capped);
   // The last substep's iterations of each solve (for tests).
@@ -57,6 +68,9 @@ class ClDfsphSolver {
 
  private:
   void ensure(const ClFluidRefs& f);
+  // While profiling: waits for the queue and adds the time since *t0 to the
+  // stage `name` of `phase`, then restarts *t0.
+  void record(const ClFluidRefs& f, const char* phase, const char* name, double* t0);
   int iterate(const ClFluidRefs& f, const FluidParams& p, bool density, float dt, double tol,
               int min_iterations, float warm, int which);
   void sources(const ClFluidRefs& f, bool density, float dt, bool gated);
@@ -75,6 +89,8 @@ class ClDfsphSolver {
   FfDfsphArgs args_{};
   long iterations_ = 0, capped_ = 0;
   int last_div_ = 0, last_dens_ = 0;
+  bool profiling_ = false;
+  std::vector<StageTime> stages_;
 };
 
 }  // namespace ff

@@ -140,11 +140,17 @@ FF_FN void ff_wcsph_pressure_accel(const float* pos, const float* lo, const floa
   }
 }
 
-/* Viscosity (the sums vs of ff_visc_pair, times mu / rho_i) plus gravity: the
- * non-pressure acceleration every solver starts from. */
-FF_FN void ff_visc_gravity_accel(const float* vs, float mu, float rhoi, const float* gravity, float* a) {
+/* The non-pressure force plug-ins' bodies (src/cpu/forces/, host/forces/,
+ * kernels/forces.cl). The forces phase starts from a = 0 and each plug-in
+ * adds its acceleration to a. */
+/* Gravity. */
+FF_FN void ff_add_gravity_accel(const float* gravity, float* a) {
+  for (int d = 0; d < 3; ++d) a[d] = a[d] + gravity[d];
+}
+/* Viscosity: the sums vs of ff_visc_pair, times mu / rho_i. */
+FF_FN void ff_add_viscosity_accel(const float* vs, float mu, float rhoi, float* a) {
   const float inv = mu / rhoi;
-  for (int d = 0; d < 3; ++d) a[d] = vs[d] * inv + gravity[d];
+  for (int d = 0; d < 3; ++d) a[d] = a[d] + vs[d] * inv;
 }
 
 #endif /* FF_SPH_H */

@@ -3,15 +3,17 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "control/shape_matching.h"
+#include "cpu/forces/cpu_forces.h"
 #include "metrics/fluid_shares.h"
 #include "parallel/parallel_grain.h"
 
 namespace ff {
 
-CpuBackend::CpuBackend(int threads) : threads_(threads) {
+CpuBackend::CpuBackend(int threads) : threads_(threads), forces_(makeCpuForces()) {
   if (threads_ > 0) omp_set_num_threads(threads_);
 }
 
@@ -76,9 +78,42 @@ void CpuBackend::computeDensity() {
   if (!solver_->computeDensity(fluid_, params_.fluid, box_)) log_.fail();
 }
 
-void CpuBackend::computeForces() {
+template <class F>
+bool CpuBackend::runForces(Phase of, Phase timed_in, F&& f) {
+  const FluidView v = view();
+  CpuForceContext c{fluid_, params_, box_, controller_, v};
+  bool ok = true;
+  for (const auto& force : forces_) {
+    if (force->phase() != of) continue;
+    const auto t0 = std::chrono::steady_clock::now();
+    ok = f(*force, c) && ok;
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    addStages(stages_, {{phaseName(timed_in), force->name(), ms}});
+  }
+  return ok;
+}
+
+void CpuBackend::computeForces(float dt) {
   log_.begin(Phase::Forces);
-  if (!computeViscosityGravity(fluid_, params_.fluid)) log_.fail();
+  clearAccelerations(fluid_);
+  if (!runForces(Phase::Forces, Phase::Forces,
+                 [dt](CpuForce& f, CpuForceContext& c) { return f.apply(c, dt); }))
+    log_.fail();
+}
+
+void CpuBackend::computeControlScale() {
+  log_.begin(Phase::ControlScale);
+  if (!runForces(Phase::ControlForces, Phase::ControlScale,
+                 [](CpuForce& f, CpuForceContext& c) { return f.prepare(c); }))
+    log_.fail();
+}
+
+void CpuBackend::applyControlForces(float dt) {
+  log_.begin(Phase::ControlForces);
+  if (!runForces(Phase::ControlForces, Phase::ControlForces,
+                 [dt](CpuForce& f, CpuForceContext& c) { return f.apply(c, dt); }))
+    log_.fail();
 }
 
 void CpuBackend::solvePressure(float dt) {
@@ -86,16 +121,17 @@ void CpuBackend::solvePressure(float dt) {
   if (!solver_->solve(fluid_, params_.fluid, box_, dt)) log_.fail();
 }
 
-void CpuBackend::computeControlScale() {
-  log_.begin(Phase::ControlScale);
-  if (controller_.active() && !controller_.computeScale(view())) log_.fail();
+std::vector<StageTime> CpuBackend::takeStageMs() {
+  std::vector<StageTime> s;
+  s.swap(stages_);
+  addStages(s, solver_->takeStages());
+  return s;
 }
 
-void CpuBackend::applyControlForces(float dt) {
-  log_.begin(Phase::ControlForces);
-  if (controller_.active() &&
-      !controller_.addForces(view(), dt, fluid_.ax.data(), fluid_.ay.data(), fluid_.az.data()))
-    log_.fail();
+std::vector<std::string> CpuBackend::forceNames() const {
+  std::vector<std::string> names;
+  for (const auto& f : forces_) names.push_back(f->name());
+  return names;
 }
 
 void CpuBackend::integrate(float dt) {

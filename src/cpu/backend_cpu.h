@@ -1,9 +1,12 @@
 // backend_cpu.h - the OpenMP reference backend: every phase on the host.
 #pragma once
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "control/controller.h"
 #include "cpu/fluid_cpu.h"
+#include "cpu/forces/cpu_force.h"
 #include "cpu/pressure_solver.h"
 #include "metrics/iou.h"
 #include "sim/backend.h"
@@ -25,7 +28,7 @@ class CpuBackend : public Backend {
 
   void buildGrid() override;
   void computeDensity() override;
-  void computeForces() override;
+  void computeForces(float dt = 0.0f) override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
   void solvePressure(float dt) override;
@@ -34,7 +37,8 @@ class CpuBackend : public Backend {
   StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
   size_t memoryBytes() const override;
-  std::vector<StageTime> takeStageMs() override { return solver_->takeStages(); }
+  std::vector<StageTime> takeStageMs() override;
+  std::vector<std::string> forceNames() const override;
 
   void saveState(StateWriter& w) const override;
   void loadState(StateReader& r) override;
@@ -52,14 +56,23 @@ class CpuBackend : public Backend {
   CpuFluid& fluid() { return fluid_; }
   Controller& controller() { return controller_; }
   PressureSolver& solver() { return *solver_; }
+  // Appends a non-pressure force after the registered ones (makeCpuForces),
+  // e.g. a test's own force.
+  void addForce(std::unique_ptr<CpuForce> force) { forces_.push_back(std::move(force)); }
 
  private:
   FluidView view() const;
+  // Runs f(force, context) for each force of phase `of`, timing each as a
+  // stage of phase `timed_in`. False if one of them returned false.
+  template <class F>
+  bool runForces(Phase of, Phase timed_in, F&& f);
   int threads_;
   Params params_;
   ContainerDesc box_;
   CpuFluid fluid_;
   std::unique_ptr<PressureSolver> solver_;
+  std::vector<std::unique_ptr<CpuForce>> forces_;  // the non-pressure forces, in order
+  std::vector<StageTime> stages_;                  // the forces' times since takeStageMs
   Controller controller_;
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;

@@ -60,33 +60,6 @@ FF_SIMD_CLONES void densitySums(const CpuFluid& f, uint32_t b, uint32_t e, float
   simd::storeN(out, sum, g.n);
 }
 
-// Viscosity sums of the particles b .. e-1 (kernels/forces.cl), 8 lanes each
-// of x, y, z in out[0..23].
-FF_SIMD_CLONES void viscositySums(const CpuFluid& f, uint32_t b, uint32_t e, float h, float mass,
-                                  float* out) {
-  const FluidState& s = f.s;
-  std::vector<uint32_t>& spans = threadSpans();
-  Group g;
-  loadGroup(s, b, e, h, f.grid, g, spans);
-  const int n = g.n;
-  const float lap_coef = ff_visc_lap_coef(h);
-  const f8 vxi = simd::loadN(&s.vx[b], n, 0.0f), vyi = simd::loadN(&s.vy[b], n, 0.0f),
-           vzi = simd::loadN(&s.vz[b], n, 0.0f);
-  const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
-  const float *vx = s.vx.data(), *vy = s.vy.data(), *vz = s.vz.data(), *rho = f.rho.data();
-  const f8 zero = simd::splat(0.0f);
-  f8 fx = zero, fy = zero, fz = zero;
-  for (size_t r = 0; r < spans.size(); r += 2)
-    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
-      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      const f8 dist = simd::sqrt8(dx * dx + dy * dy + dz * dz);
-      const f8 cv = ff_visc_pair(ff_visc_lap(dist, h, lap_coef), rho[j], mass);
-      fx += cv * (vx[j] - vxi), fy += cv * (vy[j] - vyi), fz += cv * (vz[j] - vzi);
-    }
-  const f8 sums[3] = {fx, fy, fz};
-  for (int k = 0; k < 3; ++k) simd::storeN(out + 8 * k, sums[k], n);
-}
-
 // WCSPH pressure sums of the particles b .. e-1 (kernels/pressure_wcsph.cl),
 // 8 lanes each of x, y, z in out[0..23].
 FF_SIMD_CLONES void pressureSums(const CpuFluid& f, uint32_t b, uint32_t e, float h, float mass, float* out) {
@@ -140,27 +113,8 @@ bool computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDe
   return !bad;
 }
 
-bool computeViscosityGravity(CpuFluid& f, const FluidParams& p) {
-  const size_t n = f.size();
-  for (auto* a : {&f.ax, &f.ay, &f.az}) a->resize(n);
-  const float h = p.smoothing_radius, m = p.particle_mass, mu = p.viscosity;
-  const long groups = long(f.groups.size() / 2);
-  int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
-    float sums[24] = {};
-    if (mu > 0.0f) viscositySums(f, b, e, h, m, sums);
-    for (uint32_t i = b; i < e; ++i) {
-      const size_t l = i - b;
-      const float vs[3] = {sums[l], sums[8 + l], sums[16 + l]};
-      float a[3];
-      ff_visc_gravity_accel(vs, mu, f.rho[i], p.gravity, a);
-      f.ax[i] = a[0], f.ay[i] = a[1], f.az[i] = a[2];
-      bad |= std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]) ? 0 : 1;
-    }
-  }
-  return !bad;
+void clearAccelerations(CpuFluid& f) {
+  for (auto* a : {&f.ax, &f.ay, &f.az}) a->assign(f.size(), 0.0f);
 }
 
 bool addWcsphPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box) {

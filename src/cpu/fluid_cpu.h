@@ -43,10 +43,9 @@ void buildFluidGrid(CpuFluid& f, float h, const ContainerDesc& box);
 // + the analytic wall term, and p = k (rho - rho0). False if a value is not finite.
 bool computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& box);
 
-// Phase "forces": the non-pressure accelerations every solver starts from,
-// a = viscosity (Laplacian of the viscosity kernel) + gravity. False if a
-// value is not finite.
-bool computeViscosityGravity(CpuFluid& f, const FluidParams& p);
+// Phase "forces" starts here: a = 0 (resized to the fluid); the non-pressure
+// forces (src/cpu/forces/) then add to it.
+void clearAccelerations(CpuFluid& f);
 
 // Phase "pressure" of WCSPH: adds the symmetric pressure force / rho_i and the
 // wall's mirrored pressure to a. False if a value is not finite.

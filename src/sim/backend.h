@@ -20,9 +20,9 @@ namespace ff {
 enum class Phase : int {
   Grid = 0,       // neighbour grid by counting sort + reorder by cell
   Density,        // density and pressure
-  Forces,         // non-pressure accelerations: viscosity, gravity
-  ControlScale,   // s_i of the control particles and the fluid velocity around them
-  ControlForces,  // attraction and velocity forces on the fluid
+  Forces,         // non-pressure forces (plug-ins): gravity, viscosity
+  ControlScale,   // the forces' preparation: the control's s_i and the fluid velocity around it
+  ControlForces,  // the control's plug-in: attraction and velocity forces on the fluid
   Pressure,       // the pressure solver named by params.fluid.solver (sees all the above)
   Integrate,      // fluid integration (symplectic Euler, container)
   ShapeMatching,  // clusters, goals, control-particle integration
@@ -49,10 +49,18 @@ class Backend {
 
   virtual void buildGrid() = 0;
   virtual void computeDensity() = 0;
-  // The non-pressure accelerations (viscosity, gravity): sets a.
-  virtual void computeForces() = 0;
+  // The non-pressure forces, plug-ins that each backend registers in one list
+  // (src/cpu/forces/cpu_forces.cpp, host/forces/cl_forces.cpp): gravity,
+  // viscosity, control. computeForces sets a = 0, then every force of phase
+  // Forces adds its acceleration over a substep of dt (0: the accelerations
+  // only, as the phase tests ask) in the list's order; computeControlScale
+  // and applyControlForces run the preparation (the control's density scale)
+  // and then the accelerations of the forces of phase ControlForces (the control).
+  virtual void computeForces(float dt = 0.0f) = 0;
   virtual void computeControlScale() = 0;
   virtual void applyControlForces(float dt) = 0;
+  // The registered non-pressure forces' names, in the order they run.
+  virtual std::vector<std::string> forceNames() const = 0;
   // The pressure solve for a substep of dt: adds the pressure accelerations to
   // a, after every other acceleration, so an incompressible solver sees them.
   virtual void solvePressure(float dt) = 0;
@@ -74,8 +82,9 @@ class Backend {
   // The OpenMP backend always runs a phase to completion. Off by default
   // (flowform bench and `run --profile` switch it on).
   virtual void setProfiling(bool on) { (void)on; }
-  // The named stages timed inside phases since the last call (a pressure
-  // solver's solves; empty where a backend names none).
+  // The named stages timed inside phases since the last call: each
+  // non-pressure force and a pressure solver's stages (on OpenCL only while
+  // profiling).
   virtual std::vector<StageTime> takeStageMs() { return {}; }
 
   // Host synchronisations so far: blocking reads of device memory and waits

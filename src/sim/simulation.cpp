@@ -156,7 +156,7 @@ void Simulation::step() {
   for (int k = 0; k < n; ++k) {
     timed(Phase::Grid, [&] { backend_->buildGrid(); });
     timed(Phase::Density, [&] { backend_->computeDensity(); });
-    timed(Phase::Forces, [&] { backend_->computeForces(); });
+    timed(Phase::Forces, [&] { backend_->computeForces(dt); });
     timed(Phase::ControlScale, [&] { backend_->computeControlScale(); });
     timed(Phase::ControlForces, [&] { backend_->applyControlForces(dt); });
     timed(Phase::Pressure, [&] { backend_->solvePressure(dt); });

@@ -1,0 +1,55 @@
+// backend_opencl_shape_matching.cpp - the shape-matching phase of the OpenCL
+// backend (Controller::advance); the control's forces on the fluid are its
+// plug-in host/forces/control.cpp.
+#include "host/backend_opencl.h"
+#include "host/backend_opencl_impl.h"
+#include "host/cl_errors.h"
+
+namespace ff {
+
+int OpenClBackend::shapeMatching(float dt) {
+  return clGuard("phase 'shape_matching'", [&] {
+    const int tag = beginPhase(Phase::ShapeMatching);
+    if (nc_ == 0) return 0;
+    // The shape-matching clock of Controller::advance.
+    clock_ += dt;
+    int steps = 0;
+    const double h = params_.shape.time_step;
+    while (clock_ >= h * (1.0 - 1e-9)) {
+      runShapeMatchStep(tag);
+      clock_ -= h;
+      ++steps;
+    }
+    endPhase();
+    return steps;
+  });
+}
+
+void OpenClBackend::runShapeMatchStep(int tag) {
+  Impl& d = *d_;
+  const ShapeMatchParams& sm = params_.shape;
+  // The scalar variant (GPUs): 8 work-items per cluster, one per lane of its
+  // sums (ff_cluster_sums.h), in work-groups of a power of two >= 8.
+  ClKernel& by_lane = d.sm_frames_by_lane;
+  const bool spread = !lanes_ && by_lane.pow2_local >= 8;
+  ClKernel& frames = spread ? by_lane : d.sm_frames;
+  const size_t local = by_lane.pow2_local, groups = (8 * nclusters_ + local - 1) / local;
+  auto run = [&](const auto&... args) {
+    if (spread)
+      launchGroups(d.queue(), frames, groups, local, args..., cl::Local(local * 15 * sizeof(float)));
+    else
+      launch(d.queue(), frames, nclusters_, args...);
+  };
+  run(d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.x0.get(), d.y0.get(),
+      d.z0.get(), d.cl_start.get(), d.cl_members.get(), d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(),
+      cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.q.get(), d.com_x.get(), d.com_y.get(),
+      d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get());
+  launch(d.queue(), d.sm_particles, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
+         d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_), d.of_start.get(), d.of.get(),
+         d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), d.q.get(), d.com_x.get(), d.com_y.get(),
+         d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(),
+         sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, boxLo(box_), boxHi(box_),
+         d.gx.get(), d.gy.get(), d.gz.get(), d.bad.get(), cl_int(tag));
+}
+
+}  // namespace ff

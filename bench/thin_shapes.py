@@ -5,9 +5,14 @@ the project was not tuned on (docs/RESULTS.md, "Thin features"):
   thin_disc.obj      a disc 10 times as wide as it is thick (a surface of revolution)
   dumbbell.obj       two balls joined by a bar a quarter of their radius thick
   letter_t.obj       an extruded letter T, strokes a fifth of its height wide
+  stick_figure.obj   a tall figure with thin limbs: legs, arms spread sideways
+                     and a head, limbs a fourteenth of its height thick
 
 Each is one closed, consistently oriented triangle mesh (the voxeliser counts
-ray crossings). Usage: python3 bench/thin_shapes.py FOLDER
+ray crossings). With each mesh it writes a water-preset scene,
+FOLDER/NAME.json (12,000 fluid particles, the target and no control_count:
+the count follows from the default voxel size), whose mesh resolves relative
+to the scene's folder. Usage: python3 bench/thin_shapes.py FOLDER
 """
 import math
 import os
@@ -97,6 +102,79 @@ def letter_t():
     return verts, faces
 
 
+def blocks(cells):
+    """The closed surface of a union of unit cubes (a set of (i, j, k)): every
+    face between a cube of the set and one outside it, wound outwards."""
+    verts, faces, index = [], [], {}
+
+    def vert(v):
+        if v not in index:
+            index[v] = len(verts)
+            verts.append(tuple(float(c) for c in v))
+        return index[v]
+
+    for (i, j, k) in cells:
+        for axis in range(3):
+            for side in (0, 1):
+                n = [i, j, k]
+                n[axis] += 1 if side else -1
+                if tuple(n) in cells:
+                    continue
+                # The face's corners, counter-clockwise seen from outside.
+                u, w = (axis + 1) % 3, (axis + 2) % 3
+                corner = []
+                for du, dw in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                    c = [i, j, k]
+                    c[axis] += side
+                    c[u] += du
+                    c[w] += dw
+                    corner.append(vert(tuple(c)))
+                if not side:
+                    corner.reverse()
+                faces.append((corner[0], corner[1], corner[2]))
+                faces.append((corner[0], corner[2], corner[3]))
+    return verts, faces
+
+
+def stick_figure():
+    # In cells of a quarter of a limb: y up, 28 cells tall, limbs 2 x 2 cells.
+    cells = set()
+
+    def box(x0, x1, y0, y1, z0, z1):
+        for i in range(x0, x1):
+            for j in range(y0, y1):
+                for k in range(z0, z1):
+                    cells.add((i, j, k))
+
+    box(-3, -1, 0, 14, -1, 1)  # legs
+    box(1, 3, 0, 14, -1, 1)
+    box(-3, 3, 14, 23, -1, 1)  # torso
+    box(-10, -3, 20, 22, -1, 1)  # arms, straight out
+    box(3, 10, 20, 22, -1, 1)
+    box(-1, 1, 23, 24, -1, 1)  # neck
+    box(-2, 2, 24, 28, -2, 2)  # head
+    return blocks(cells)
+
+
+SCENES = {
+    # name: (container max, fluid block origin)
+    "thin_disc": ([0.5, 0.5, 0.5], [0.187, 0.0, 0.187]),
+    "dumbbell": ([0.6, 0.4, 0.4], [0.237, 0.0, 0.137]),
+    "letter_t": ([0.5, 0.5, 0.4], [0.187, 0.0, 0.137]),
+    "stick_figure": ([0.6, 0.8, 0.4], [0.237, 0.0, 0.137]),
+}
+
+
+def write_scene(path, name):
+    top, origin = SCENES[name]
+    with open(path, "w") as f:
+        f.write('{\n  "name": "%s_water",\n  "preset": "water",\n  "duration": 4.0,\n' % name)
+        f.write('  "container": {"min": [0.0, 0.0, 0.0], "max": [%g, %g, %g]},\n' % tuple(top))
+        f.write('  "fluid": [{"origin": [%g, %g, %g], "dims": [20, 30, 20]}],\n' % tuple(origin))
+        f.write('  "region": "all",\n')
+        f.write('  "target": {"shape": "mesh", "mesh": "%s.obj"}\n}\n' % name)
+
+
 def write(path, mesh):
     verts, faces = mesh
     with open(path, "w") as f:
@@ -112,9 +190,11 @@ def main():
         sys.exit("usage: python3 bench/thin_shapes.py FOLDER")
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
-    for name, mesh in (("thin_disc.obj", disc()), ("dumbbell.obj", dumbbell()), ("letter_t.obj", letter_t())):
-        write(os.path.join(out, name), mesh)
-        print(os.path.join(out, name), len(mesh[0]), "vertices", len(mesh[1]), "triangles")
+    for name, mesh in (("thin_disc", disc()), ("dumbbell", dumbbell()), ("letter_t", letter_t()),
+                       ("stick_figure", stick_figure())):
+        write(os.path.join(out, name + ".obj"), mesh)
+        write_scene(os.path.join(out, name + ".json"), name)
+        print(os.path.join(out, name + ".obj"), len(mesh[0]), "vertices", len(mesh[1]), "triangles")
 
 
 if __name__ == "__main__":

@@ -189,15 +189,20 @@ void Simulation::step() {
       throw Error("step " + std::to_string(step_) + ": a metric became NaN or Inf in phase 'metrics'");
 }
 
-void Simulation::setTarget(const TargetSpec& spec) {
+void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   FluidState s;
   backend_->readFluid(s);
   const RegionDesc& r = scene_.region;
-  // With a target already active, "the current fluid region" is the fluid that
-  // forms the current shape: inside its voxels (dilated by one voxel), placed
-  // where the control particles have carried it. Fluid that fell out of the
-  // shape onto the floor is not part of it, so it does not inflate the new
-  // target's volume or bounding box.
+  // With a target already active, the new shape is placed over the fluid that
+  // forms the current shape: inside its voxels (dilated by one voxel), where
+  // the control particles have carried it. Fluid that fell out of the shape
+  // onto the floor does not stretch the new target's bounding box. With the
+  // recapture on, which brings that fluid back, it still counts in the new
+  // target's volume: the controlled fluid stays the same particles (by
+  // identity) and the control set's volume does not shrink from one change to
+  // the next. Without it, the new target holds only the fluid of the current
+  // shape.
+  const bool keep = target_ != nullptr && !reselect && scene_.params.control.recapture > 0.0f;
   std::function<bool(const Vec3&)> inCurrentShape = [](const Vec3&) { return true; };
   ControlSet cur;
   if (target_) {
@@ -230,7 +235,10 @@ void Simulation::setTarget(const TargetSpec& spec) {
       return false;
     };
   }
-  auto inRegion = [&r](const Vec3& p) {
+  const std::vector<uint8_t> was_controlled = controlled_by_id_;  // empty: all the fluid
+  auto inRegion = [&](size_t i) {
+    if (keep) return was_controlled.empty() || was_controlled[s.id[i]] != 0;
+    const Vec3 p(s.x[i], s.y[i], s.z[i]);
     if (r.kind == RegionDesc::Kind::Box)
       return (p.array() >= r.min.array()).all() && (p.array() <= r.max.array()).all();
     if (r.kind == RegionDesc::Kind::Sphere) return (p - r.center).squaredNorm() <= r.radius * r.radius;
@@ -241,13 +249,15 @@ void Simulation::setTarget(const TargetSpec& spec) {
     px.clear(), py.clear(), pz.clear();
     for (size_t i = 0; i < s.size(); ++i) {
       Vec3 p(s.x[i], s.y[i], s.z[i]);
-      if (!inRegion(p) || (shape_only && !inCurrentShape(p))) continue;
+      if (!inRegion(i) || (shape_only && !inCurrentShape(p))) continue;
       px.push_back(p.x()), py.push_back(p.y()), pz.push_back(p.z());
     }
   };
+  collect(false);
+  const long in_region = long(px.size());
   collect(true);
   if (px.empty()) collect(false);  // the current shape holds no fluid: start from the region
-  const long count = long(px.size());
+  const long count = keep ? in_region : long(px.size());
   if (count == 0) throw Error(scene_.source + ": region: the controlled region holds no fluid particles");
   // The region's bounding box, robust to the few droplets a splash throws far
   // away: the 1st to 99th percentile of the particles along each axis (all of
@@ -285,8 +295,7 @@ void Simulation::setTarget(const TargetSpec& spec) {
   controlled_by_id_.clear();
   if (r.kind != RegionDesc::Kind::All) {
     controlled_by_id_.assign(s.size(), 0);
-    for (size_t i = 0; i < s.size(); ++i)
-      controlled_by_id_[s.id[i]] = inRegion(Vec3(s.x[i], s.y[i], s.z[i])) ? 1 : 0;
+    for (size_t i = 0; i < s.size(); ++i) controlled_by_id_[s.id[i]] = inRegion(i) ? 1 : 0;
   }
   backend_->setControl(std::move(placed));
   backend_->setMetricsTarget(target_);
@@ -304,7 +313,7 @@ void Simulation::clearTarget() {
 
 void Simulation::setRegion(const RegionDesc& region) {
   scene_.region = region;
-  if (has_target_) setTarget(target_spec_);
+  if (has_target_) makeTarget(target_spec_, true);
 }
 
 void Simulation::setParams(const Params& params) {

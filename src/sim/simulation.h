@@ -30,8 +30,10 @@ class Simulation {
   void step();
 
   // Changes the target now: new control particles from the current fluid
-  // region, nothing precomputed beyond voxelising the shape (cached).
-  void setTarget(const TargetSpec& spec);
+  // region, nothing precomputed beyond voxelising the shape (cached). With a
+  // target active and the recapture on, the controlled fluid stays the same
+  // particles and the new shape holds all of them.
+  void setTarget(const TargetSpec& spec) { makeTarget(spec, false); }
   // Switches control off.
   void clearTarget();
   // Changes the controlled region; the current target is regenerated in it.
@@ -77,6 +79,8 @@ class Simulation {
   static FluidState makeFluid(const SceneDesc& scene);
 
  private:
+  // setTarget; with `reselect`, the controlled fluid is chosen again from the region.
+  void makeTarget(const TargetSpec& spec, bool reselect);
   void applySchedule();
   template <class F>
   void timed(Phase p, F&& f);

@@ -21,7 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kCountTolerance = 0.03;  // control_count: within 3%
+constexpr double kCountTolerance = 0.03;   // control_count: within 3%
+constexpr double kVolumeTolerance = 0.01;  // default voxel: inside voxels hold the volume within 1%
 constexpr size_t kMinInside = 8;
 
 const char* kindName(TargetKind kind) {
@@ -289,7 +290,9 @@ TargetShape buildTarget(const TargetSpec& spec, double fluid_rest_volume, float 
   } else if (spec.control_count > 0) {
     target.grid = searchVoxelSize(spec.control_count, kCountTolerance, volume, voxelize, context);
   } else {
-    target.grid = voxelize(default_voxel_size, Vec3::Zero());
+    // Near the default size, a voxel whose inside voxels hold the shape's
+    // volume: the fluid that is to fill them.
+    target.grid = searchVoxelVolume(default_voxel_size, volume, kVolumeTolerance, voxelize);
   }
 
   const VoxelGrid& g = target.grid;

@@ -22,4 +22,14 @@ using Voxelizer = std::function<VoxelGrid(float voxel, const Vec3& shift)>;
 VoxelGrid searchVoxelSize(int count, double tolerance, double volume, const Voxelizer& voxelize,
                           const std::string& context);
 
+// Returns a voxelisation near `voxel` whose inside voxels hold `volume`
+// (count x voxel^3) within `tolerance`, or the closest of a few tries: the
+// fixed point voxel = (volume / count(voxel))^(1/3), which a box reaches in
+// one step (a whole number of voxels per side), from `voxel` and from a few
+// grid shifts, never beyond a factor of 1.25 from `voxel`. A shape a few
+// voxels thick (a disc, a letter, a limb) loses or gains a layer of voxels to
+// the rounding of its thickness; at the given voxel its voxels could hold 30%
+// more than the fluid that is to fill them.
+VoxelGrid searchVoxelVolume(float voxel, double volume, double tolerance, const Voxelizer& voxelize);
+
 }  // namespace ff

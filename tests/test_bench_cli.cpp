@@ -130,6 +130,16 @@ TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
   EXPECT_TRUE(has_cpu);
   // The markdown table on stdout names every phase.
   for (const std::string& p : kPhases) EXPECT_NE(r.out.find("| " + p + " |"), std::string::npos) << p;
+  // Its stage table names each non-pressure force plug-in under its phase, on
+  // every backend (bench profiles, so OpenCL times them too).
+  for (const auto& [key, rs] : runs)
+    for (const char* stage :
+         {"forces | gravity", "forces | viscosity", "control_scale | control", "control_forces | control"})
+      EXPECT_NE(r.out.find("| control-sweep | " + rs.front().backend + " | " +
+                           std::to_string(rs.front().fluid) + " | " + stage + " |"),
+                std::string::npos)
+          << key << ": " << stage << "\n"
+          << r.out;
   // --plot: the control sweep's plot, a PNG.
   std::ifstream png(d / "b_control.png", std::ios::binary);
   ASSERT_TRUE(png.good()) << r.out;

@@ -198,7 +198,8 @@ std::function<int()> addRunCommand(CLI::App& app) {
                   "rows); other steps read nothing back from an OpenCL device")
       ->check(CLI::PositiveNumber);
   run->add_flag("--profile", o->profile,
-                "Time each phase exactly (every OpenCL phase waits for its kernels)");
+                "Time each phase exactly (every OpenCL phase waits for its kernels), and on OpenCL "
+                "each force plug-in and solver stage too");
   run->add_option("--checkpoint-every", o->checkpoint_every, "Write a checkpoint every T simulated seconds")
       ->check(CLI::PositiveNumber);
   run->add_option("--checkpoint", o->checkpoint_dir,

@@ -280,6 +280,10 @@ void timingSection(ViewerUi& ui, ViewerSession& session) {
   ImGui::Text("FPS %.1f   frame %.1f ms", fps, ui.frame_ms.value);
   ImGui::Text("simulation %.1f ms/frame (%d steps)   render %.1f ms", ui.sim_ms_per_frame.value,
               ui.steps_last_frame, ui.render_ms.value);
+  ImGui::Checkbox("profile phases and stages", &ui.profile_phases);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each phase waits for the device: OpenCL's phases, forces and solver stages are timed");
+  sim.setProfiling(ui.profile_phases);
   if (ImGui::BeginTable("phases", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
     ImGui::TableSetupColumn("phase");
     ImGui::TableSetupColumn("last ms");

@@ -87,6 +87,11 @@ struct ViewerUi {
   std::array<Smoothed, size_t(Phase::Count)> phase_ms;
   Smoothed step_ms, sim_ms_per_frame, render_ms, frame_ms;
   int steps_last_frame = 0;
+  // Simulation::setProfiling: every phase waits for the device, so that the
+  // OpenCL backend's phases and stages (each force, the solver's solves) are
+  // timed as `run --profile` times them; off, a phase's time on OpenCL is its
+  // enqueueing.
+  bool profile_phases = false;
 
   // Messages for the panel (newest last); errors also go to stderr.
   struct Message {

@@ -95,22 +95,19 @@ bool computeDensityPressure(CpuFluid& f, const FluidParams& p, const ContainerDe
   const float lo[3] = {box.min.x(), box.min.y(), box.min.z()},
               hi[3] = {box.max.x(), box.max.y(), box.max.z()};
   const FluidState& s = f.s;
-  const long groups = long(f.groups.size() / 2);
-  int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+  return forEachGroupFinite(f.groups, [&](uint32_t b, uint32_t e) {
     float sum[8];
     densitySums(f, b, e, h, coef, sum);
+    bool finite = true;
     for (uint32_t i = b; i < e; ++i) {
       const float pos[3] = {s.x[i], s.y[i], s.z[i]};
       const float rho = m * sum[i - b] + rho0 * ff_wall_density_share(pos, lo, hi, h, coef);
       f.rho[i] = rho;
       f.p[i] = ff_pressure(rho, rho0, k);
-      bad |= std::isfinite(rho) && std::isfinite(f.p[i]) ? 0 : 1;
+      finite = finite && std::isfinite(rho) && std::isfinite(f.p[i]);
     }
-  }
-  return !bad;
+    return finite;
+  });
 }
 
 void clearAccelerations(CpuFluid& f) {
@@ -122,13 +119,10 @@ bool addWcsphPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& bo
   const float lo[3] = {box.min.x(), box.min.y(), box.min.z()},
               hi[3] = {box.max.x(), box.max.y(), box.max.z()};
   const FluidState& s = f.s;
-  const long groups = long(f.groups.size() / 2);
-  int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+  return forEachGroupFinite(f.groups, [&](uint32_t b, uint32_t e) {
     float sums[24];
     pressureSums(f, b, e, h, m, sums);
+    bool finite = true;
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       const float pos[3] = {s.x[i], s.y[i], s.z[i]}, ps[3] = {sums[l], sums[8 + l], sums[16 + l]};
@@ -136,10 +130,10 @@ bool addWcsphPressure(CpuFluid& f, const FluidParams& p, const ContainerDesc& bo
       ff_wcsph_pressure_accel(pos, lo, hi, h, f.p[i], f.rho[i], ps, a);
       const float r[3] = {f.ax[i] + a[0], f.ay[i] + a[1], f.az[i] + a[2]};
       f.ax[i] = r[0], f.ay[i] = r[1], f.az[i] = r[2];
-      bad |= std::isfinite(r[0]) && std::isfinite(r[1]) && std::isfinite(r[2]) ? 0 : 1;
+      finite = finite && std::isfinite(r[0]) && std::isfinite(r[1]) && std::isfinite(r[2]);
     }
-  }
-  return !bad;
+    return finite;
+  });
 }
 
 bool integrateFluid(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) {

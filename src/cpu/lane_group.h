@@ -44,4 +44,15 @@ void forEachGroup(const std::vector<uint32_t>& groups, Body&& body) {
   for (long gi = 0; gi < n; ++gi) body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
+// As forEachGroup, with body(b, e) returning whether every value it wrote is
+// finite: true if every call did.
+template <class Body>
+bool forEachGroupFinite(const std::vector<uint32_t>& groups, Body&& body) {
+  const long n = long(groups.size() / 2);
+  int bad = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
+  for (long gi = 0; gi < n; ++gi) bad |= body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]) ? 0 : 1;
+  return !bad;
+}
+
 }  // namespace ff

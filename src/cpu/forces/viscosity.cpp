@@ -51,23 +51,20 @@ class CpuViscosity : public CpuForce {
     const float h = p.smoothing_radius, m = p.particle_mass, mu = p.viscosity;
     if (!(mu > 0.0f)) return true;  // adds exactly 0
     CpuFluid& f = c.fluid;
-    const long groups = long(f.groups.size() / 2);
-    int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-    for (long gi = 0; gi < groups; ++gi) {
-      const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+    return forEachGroupFinite(f.groups, [&](uint32_t b, uint32_t e) {
       float sums[24];
       viscositySums(f, b, e, h, m, sums);
+      bool finite = true;
       for (uint32_t i = b; i < e; ++i) {
         const size_t l = i - b;
         const float vs[3] = {sums[l], sums[8 + l], sums[16 + l]};
         float a[3] = {f.ax[i], f.ay[i], f.az[i]};
         ff_add_viscosity_accel(vs, mu, f.rho[i], a);
         f.ax[i] = a[0], f.ay[i] = a[1], f.az[i] = a[2];
-        bad |= std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]) ? 0 : 1;
+        finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
       }
-    }
-    return !bad;
+      return finite;
+    });
   }
 };
 

@@ -7,6 +7,7 @@
 #include "host/cl_errors.h"
 #include "host/dfsph_cl.h"
 #include "host/forces/cl_forces.h"
+#include "host/sph_args.h"
 
 namespace ff {
 
@@ -206,14 +207,10 @@ void OpenClBackend::computeDensity() {
     const DeviceGrid& g = d.fluid_h;
     if (dfsph_)
       dfsph_->computeDensity(fluidRefs(), f, box_, tag);
-    else if (lanes_)
-      launch(d.queue(), d.density_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(),
-             g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius, f.particle_mass, f.rest_density,
-             f.gas_constant, boxLo(box_), boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
     else
-      launch(d.queue(), d.density, n_, d.X(), d.Y(), d.Z(), cl_uint(n_), g.start.get(), g.geom.geo(),
-             g.geom.dims(), f.smoothing_radius, f.particle_mass, f.rest_density, f.gas_constant, boxLo(box_),
-             boxHi(box_), d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
+      launch(d.queue(), lanes_ ? d.density_lanes : d.density, lanes_ ? padded8(n_) / 8 : n_, d.X(), d.Y(),
+             d.Z(), cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), sphArgs(f, box_, g.geom.cell),
+             d.rho.get(), d.p.get(), d.bad.get(), cl_int(tag));
     endPhase();
   });
 }
@@ -296,15 +293,11 @@ void OpenClBackend::solvePressure(float dt) {
     const DeviceGrid& g = d.fluid_h;
     if (dfsph_)
       dfsph_->solve(fluidRefs(), f, dt, tag);
-    else if (lanes_)
-      launch(d.queue(), d.pressure_wcsph_lanes, padded8(n_) / 8, d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(),
-             cl_uint(n_), g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell, f.smoothing_radius,
-             f.particle_mass, boxLo(box_), boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
-             cl_int(tag));
     else
-      launch(d.queue(), d.pressure_wcsph, n_, d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(), cl_uint(n_),
-             g.start.get(), g.geom.geo(), g.geom.dims(), f.smoothing_radius, f.particle_mass, boxLo(box_),
-             boxHi(box_), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(), cl_int(tag));
+      launch(d.queue(), lanes_ ? d.pressure_wcsph_lanes : d.pressure_wcsph, lanes_ ? padded8(n_) / 8 : n_,
+             d.X(), d.Y(), d.Z(), d.rho.get(), d.p.get(), cl_uint(n_), g.start.get(), g.geom.geo(),
+             g.geom.dims(), sphArgs(f, box_, g.geom.cell), d.ax.get(), d.ay.get(), d.az.get(), d.bad.get(),
+             cl_int(tag));
     endPhase();
   });
 }

@@ -26,11 +26,13 @@ inline void density_finish(uint i, float xi, float yi, float zi, float sum, floa
 }
 
 __kernel void density(__global const float* x, __global const float* y, __global const float* z, uint n,
-                      __global const uint* start, float4 geo, int4 dims, float h, float mass, float rho0,
-                      float gas_k, float4 box_lo, float4 box_hi, __global float* rho_out,
+                      __global const uint* start, float4 geo, int4 dims, FfSphArgs P, __global float* rho_out,
                       __global float* p_out, __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  const float h = P.h, mass = P.mass, rho0 = P.rho0, gas_k = P.gas_k;
+  const float4 box_lo = (float4)(P.lo[0], P.lo[1], P.lo[2], 0.0f),
+               box_hi = (float4)(P.hi[0], P.hi[1], P.hi[2], 0.0f);
   const float h2 = h * h, coef = ff_poly6_coef(h);
   const float xi = x[i], yi = y[i], zi = z[i];
   uint b[9], e[9];
@@ -45,13 +47,15 @@ __kernel void density(__global const float* x, __global const float* y, __global
   density_finish(i, xi, yi, zi, sum, h, coef, mass, rho0, gas_k, box_lo, box_hi, rho_out, p_out, bad, tag);
 }
 
-// cell: the grid's cell size (1 / geo.w).
+// P.cell: the grid's cell size (1 / geo.w).
 __kernel void density_lanes(__global const float* x, __global const float* y, __global const float* z, uint n,
-                            __global const uint* start, float4 geo, int4 dims, float cell, float h,
-                            float mass, float rho0, float gas_k, float4 box_lo, float4 box_hi,
+                            __global const uint* start, float4 geo, int4 dims, FfSphArgs P,
                             __global float* rho_out, __global float* p_out, __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
+  const float cell = P.cell, h = P.h, mass = P.mass, rho0 = P.rho0, gas_k = P.gas_k;
+  const float4 box_lo = (float4)(P.lo[0], P.lo[1], P.lo[2], 0.0f),
+               box_hi = (float4)(P.hi[0], P.hi[1], P.hi[2], 0.0f);
   const float h2 = h * h, coef = ff_poly6_coef(h);
   const int8 valid = ff_lane_valid(i0, n);
   const float8 xi = ff_load_lanes(x, i0, valid, FF_LANE_FAR), yi = ff_load_lanes(y, i0, valid, FF_LANE_FAR),

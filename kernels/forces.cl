@@ -37,10 +37,11 @@ inline void viscosity_finish(uint i, float rhoi, float fx, float fy, float fz, f
 __kernel void viscosity(__global const float* x, __global const float* y, __global const float* z,
                         __global const float* vx, __global const float* vy, __global const float* vz,
                         __global const float* rho, uint n, __global const uint* start, float4 geo, int4 dims,
-                        float h, float mass, float mu, __global float* ax, __global float* ay,
-                        __global float* az, __global int* bad, int tag) {
+                        FfSphArgs P, __global float* ax, __global float* ay, __global float* az,
+                        __global int* bad, int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  const float h = P.h, mass = P.mass, mu = P.mu;
   const float lap_coef = ff_visc_lap_coef(h);
   const float xi = x[i], yi = y[i], zi = z[i];
   const float vxi = vx[i], vyi = vy[i], vzi = vz[i];
@@ -58,14 +59,15 @@ __kernel void viscosity(__global const float* x, __global const float* y, __glob
   viscosity_finish(i, rho[i], fx, fy, fz, mu, ax, ay, az, bad, tag);
 }
 
-// cell: the grid's cell size (1 / geo.w). rho holds a multiple of 8 floats.
+// P.cell: the grid's cell size (1 / geo.w). rho holds a multiple of 8 floats.
 __kernel void viscosity_lanes(__global const float* x, __global const float* y, __global const float* z,
                               __global const float* vx, __global const float* vy, __global const float* vz,
                               __global const float* rho, uint n, __global const uint* start, float4 geo,
-                              int4 dims, float cell, float h, float mass, float mu, __global float* ax,
-                              __global float* ay, __global float* az, __global int* bad, int tag) {
+                              int4 dims, FfSphArgs P, __global float* ax, __global float* ay,
+                              __global float* az, __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
+  const float cell = P.cell, h = P.h, mass = P.mass, mu = P.mu;
   const float lap_coef = ff_visc_lap_coef(h);
   const int8 valid = ff_lane_valid(i0, n);
   const float8 zero = (float8)(0.0f);

@@ -24,11 +24,14 @@ inline void pressure_finish(uint i, float xi, float yi, float zi, float pi, floa
 
 __kernel void pressure_wcsph(__global const float* x, __global const float* y, __global const float* z,
                              __global const float* rho, __global const float* p, uint n,
-                             __global const uint* start, float4 geo, int4 dims, float h, float mass,
-                             float4 box_lo, float4 box_hi, __global float* ax, __global float* ay,
-                             __global float* az, __global int* bad, int tag) {
+                             __global const uint* start, float4 geo, int4 dims, FfSphArgs P,
+                             __global float* ax, __global float* ay, __global float* az, __global int* bad,
+                             int tag) {
   const uint i = get_global_id(0);
   if (i >= n) return;
+  const float h = P.h, mass = P.mass;
+  const float4 box_lo = (float4)(P.lo[0], P.lo[1], P.lo[2], 0.0f),
+               box_hi = (float4)(P.hi[0], P.hi[1], P.hi[2], 0.0f);
   const float grad_coef = ff_spiky_grad_coef(h);
   const float xi = x[i], yi = y[i], zi = z[i], pi = p[i];
   uint b[9], e[9];
@@ -48,14 +51,17 @@ __kernel void pressure_wcsph(__global const float* x, __global const float* y, _
   pressure_finish(i, xi, yi, zi, pi, rho[i], px, py, pz, h, box_lo, box_hi, ax, ay, az, bad, tag);
 }
 
-// cell: the grid's cell size (1 / geo.w). rho and p hold a multiple of 8 floats.
+// P.cell: the grid's cell size (1 / geo.w). rho and p hold a multiple of 8 floats.
 __kernel void pressure_wcsph_lanes(__global const float* x, __global const float* y, __global const float* z,
                                    __global const float* rho, __global const float* p, uint n,
-                                   __global const uint* start, float4 geo, int4 dims, float cell, float h,
-                                   float mass, float4 box_lo, float4 box_hi, __global float* ax,
-                                   __global float* ay, __global float* az, __global int* bad, int tag) {
+                                   __global const uint* start, float4 geo, int4 dims, FfSphArgs P,
+                                   __global float* ax, __global float* ay, __global float* az,
+                                   __global int* bad, int tag) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
+  const float cell = P.cell, h = P.h, mass = P.mass;
+  const float4 box_lo = (float4)(P.lo[0], P.lo[1], P.lo[2], 0.0f),
+               box_hi = (float4)(P.hi[0], P.hi[1], P.hi[2], 0.0f);
   const float grad_coef = ff_spiky_grad_coef(h);
   const int8 valid = ff_lane_valid(i0, n);
   const float8 xi = ff_load_lanes(x, i0, valid, FF_LANE_FAR), yi = ff_load_lanes(y, i0, valid, FF_LANE_FAR),

@@ -5,6 +5,7 @@
 
 #include "host/backend_opencl_impl.h"
 #include "host/forces/cl_force.h"
+#include "host/sph_args.h"
 
 namespace ff {
 
@@ -21,14 +22,9 @@ class ClViscosity : public ClForce {
     const FluidParams& p = c.params.fluid;
     if (f.n == 0 || !(p.viscosity > 0.0f)) return;  // adds exactly 0
     const DeviceGrid& g = *f.grid;
-    if (f.lanes)
-      launch(*f.queue, lanes_, padded8(f.n) / 8, *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, *f.rho, cl_uint(f.n),
-             g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell, p.smoothing_radius, p.particle_mass,
-             p.viscosity, *f.ax, *f.ay, *f.az, *f.bad, cl_int(c.tag));
-    else
-      launch(*f.queue, k_, f.n, *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, *f.rho, cl_uint(f.n), g.start.get(),
-             g.geom.geo(), g.geom.dims(), p.smoothing_radius, p.particle_mass, p.viscosity, *f.ax, *f.ay,
-             *f.az, *f.bad, cl_int(c.tag));
+    launch(*f.queue, f.lanes ? lanes_ : k_, f.lanes ? padded8(f.n) / 8 : f.n, *f.x, *f.y, *f.z, *f.vx, *f.vy,
+           *f.vz, *f.rho, cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(),
+           sphArgs(p, c.box, g.geom.cell), *f.ax, *f.ay, *f.az, *f.bad, cl_int(c.tag));
   }
 
  private:

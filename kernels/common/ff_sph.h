@@ -153,4 +153,13 @@ FF_FN void ff_add_viscosity_accel(const float* vs, float mu, float rhoi, float* 
   for (int d = 0; d < 3; ++d) a[d] = a[d] + vs[d] * inv;
 }
 
+/* The scalars of the SPH kernels other than DFSPH's (density.cl,
+ * pressure_wcsph.cl, forces.cl), in one struct of 4-byte fields, as
+ * FfDfsphArgs (C++ and OpenCL C lay it out alike). */
+typedef struct {
+  float lo[4], hi[4];               /* the container's corners (the 4th unused) */
+  float h, mass, rho0, gas_k;       /* support, particle mass, rest density, EOS stiffness k */
+  float mu, cell, unused0, unused1; /* viscosity, the grid's cell size (the lane kernels) */
+} FfSphArgs;
+
 #endif /* FF_SPH_H */

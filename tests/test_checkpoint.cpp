@@ -9,13 +9,16 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli_run.h"
 #include "core/error.h"
+#include "core/fluid_state.h"
 #include "cpu/backend_cpu.h"
+#include "scene/scene.h"
 #include "sim/checkpoint.h"
 
 namespace {
@@ -202,6 +205,58 @@ TEST_F(CheckpointFile, CliNamesTheBadCheckpoint) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("bad.ffck: the checkpoint is corrupted"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+}
+
+// A water dam break (DFSPH) resumed at the step where its substep count
+// changes: the solver's warm start scales k by the change of the substep, so
+// a checkpoint that forgot the last substep would resume with another start.
+TEST(Checkpoint, WaterResumeIsBitIdenticalWhereTheSubstepChanges) {
+  const char* scene = R"({
+    "name": "ckpt-water", "preset": "water",
+    "container": {"min": [0, 0, 0], "max": [0.25, 0.15, 0.06]},
+    "fluid": [{"origin": [0, 0, 0], "dims": [10, 16, 8]}]
+  })";
+  using ff::Simulation;
+  auto fresh = [&] {
+    return std::make_unique<Simulation>(ff::parseScene(scene, "ckpt-water.json", ""),
+                                        std::make_unique<ff::CpuBackend>(2));
+  };
+  constexpr int kSteps = 60;
+  auto straight = fresh();
+  std::vector<int> substeps;
+  for (int i = 0; i < kSteps; ++i) {
+    straight->step();
+    substeps.push_back(straight->metrics().substeps);
+  }
+  int k = 1;
+  while (k < kSteps - 5 && substeps[size_t(k)] == substeps[size_t(k) - 1]) ++k;
+  ASSERT_LT(k, kSteps - 5) << "the substep count never changed; the test needs a step where it does";
+  // Stop after step k - 1 (k steps), so the resumed run's first step has a new substep.
+  auto first = fresh();
+  for (int i = 0; i < k; ++i) first->step();
+  const fftest::TempDir d("ckpt_water");
+  const std::string path = (d / "water.ffck").string();
+  ff::writeCheckpoint(path, *first);
+  auto resumed = ff::loadCheckpoint(path, std::make_unique<ff::CpuBackend>(2));
+  for (int i = k; i < kSteps; ++i) resumed->step();
+  ff::FluidState a, b;
+  straight->backend().readFluid(a);
+  resumed->backend().readFluid(b);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 0u);
+  // By identity: the same particle has the same position and velocity bit for bit.
+  std::vector<size_t> at(a.size());
+  for (size_t i = 0; i < b.size(); ++i) at[b.id[i]] = i;
+  size_t differ = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const size_t j = at[a.id[i]];
+    const float va[6] = {a.x[i], a.y[i], a.z[i], a.vx[i], a.vy[i], a.vz[i]};
+    const float vb[6] = {b.x[j], b.y[j], b.z[j], b.vx[j], b.vy[j], b.vz[j]};
+    differ += std::memcmp(va, vb, sizeof va) != 0;
+  }
+  EXPECT_EQ(differ, 0u) << "resumed before step " << k << " (" << substeps[size_t(k) - 1] << " -> "
+                        << substeps[size_t(k)] << " substeps)";
+  EXPECT_EQ(resumed->stepCount(), straight->stepCount());
 }
 
 }  // namespace

@@ -329,15 +329,19 @@ void DfsphSolver::reorder(const std::vector<uint32_t>& order) {
 void DfsphSolver::saveState(StateWriter& w) const {
   w.vec(kd_);
   w.vec(kv_);
+  w.pod(last_dt_);  // the warm start scales k by the change of dt
 }
 
 void DfsphSolver::loadState(StateReader& r, size_t n) {
   std::vector<float> kd, kv;
   r.vec(kd);
   r.vec(kv);
+  const float last_dt = r.pod<float>();
+  r.check(std::isfinite(last_dt) && last_dt >= 0.0f, "its DFSPH substep is not a finite time >= 0");
   r.check((kd.empty() || kd.size() == n) && kd.size() == kv.size(),
           "its DFSPH state does not match its " + std::to_string(n) + " fluid particles");
   kd_ = std::move(kd), kv_ = std::move(kv);
+  last_dt_ = last_dt;
 }
 
 size_t DfsphSolver::memoryBytes() const {

@@ -81,7 +81,7 @@ void CpuBackend::computeDensity() {
 template <class F>
 bool CpuBackend::runForces(Phase of, Phase timed_in, F&& f) {
   const FluidView v = view();
-  CpuForceContext c{fluid_, params_, box_, controller_, v};
+  CpuForceContext c{fluid_, params_, box_, controller_, v, fluid_.sorted ? solver_->neighbours() : nullptr};
   bool ok = true;
   for (const auto& force : forces_) {
     if (force->phase() != of) continue;

@@ -33,7 +33,9 @@ struct Kernel {
 
 // w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2 and the count of
 // neighbours within H of the particles b .. e-1 (6 x 8 lanes), group gi.
-// Keeps the candidates that a lane reaches (g != 0) with their g in `cache`.
+// First keeps in `cache` the candidates that a lane reaches (a cheap test on
+// r^2), then sums over those alone and stores their g: the candidates left
+// out add exactly 0 to every sum (NeighbourCache).
 FF_SIMD_CLONES void factorSums(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
                                float* out, NeighbourCache& cache) {
   const FluidState& s = f.s;
@@ -42,35 +44,33 @@ FF_SIMD_CLONES void factorSums(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   loadGroup(s, b, e, kr.h, f.grid, g, spans);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
   const float h2 = kr.h * kr.h;
-  const f8 zero = simd::splat(0.0f);
-  f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;
+  const f8 reach2 = simd::splat(cache.reach2());
   size_t most = 0;
   for (size_t r = 0; r < spans.size(); r += 2) most += spans[r + 1] - spans[r];
-  NeighbourCache::Writer out_list = cache.open(most);
+  NeighbourCache::Writer list = cache.open(most);
   for (size_t r = 0; r < spans.size(); r += 2)
     for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      const f8 r2 = dx * dx + dy * dy + dz * dz;
-      const f8 dist = simd::sqrt8(r2);
-      const f8 gf = ff_cubic_grad_factor(dist, kr.inv_h, kr.kg);
-      w += ff_cubic(dist, kr.inv_h, kr.k);
-      ax += gf * dx, ay += gf * dy, az += gf * dz;
-      ssq += gf * gf * r2;
-      cnt += r2 < h2 ? simd::splat(1.0f) : zero;
-      out_list.put(j, gf, simd::any(gf > zero));  // g >= 0
+      list.put(j, simd::any(dx * dx + dy * dy + dz * dz < reach2));
     }
-  cache.close(gi, out_list);
+  const f8 zero = simd::splat(0.0f);
+  f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;
+  const size_t m = list.size();
+  for (size_t q = 0; q < m; ++q) {
+    const uint32_t j = list.index(q);
+    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+    const f8 r2 = dx * dx + dy * dy + dz * dz;
+    const f8 dist = simd::sqrt8(r2);
+    const f8 gf = ff_cubic_grad_factor(dist, kr.inv_h, kr.kg);
+    w += ff_cubic(dist, kr.inv_h, kr.k);
+    ax += gf * dx, ay += gf * dy, az += gf * dz;
+    ssq += gf * gf * r2;
+    cnt += r2 < h2 ? simd::splat(1.0f) : zero;
+    list.value(q, gf);
+  }
+  cache.close(gi, list);
   const f8 sums[6] = {w, ax, ay, az, ssq, cnt};
   for (int q = 0; q < 6; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
-}
-
-// The lanes of group gi (particles b .. e-1) as loadGroup sets them.
-inline Group lanesOf(const FluidState& s, uint32_t b, uint32_t e) {
-  Group g;
-  g.n = int(e - b);
-  g.x = simd::loadN(&s.x[b], g.n, kLaneFar), g.y = simd::loadN(&s.y[b], g.n, kLaneFar);
-  g.z = simd::loadN(&s.z[b], g.n, kLaneFar);
-  return g;
 }
 
 // rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1 (group gi), over
@@ -124,9 +124,10 @@ FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const NeighbourCache& nc, size_
 // Runs body(gi, b, e) over the lane groups in parallel.
 template <class Body>
 void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
-  const long n = long(groups.size() / 2);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (long gi = 0; gi < n; ++gi) body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
+  forEachGroupIndexFinite(groups, [&](size_t gi, uint32_t b, uint32_t e) {
+    body(gi, b, e);
+    return true;
+  });
 }
 
 using Clock = std::chrono::steady_clock;
@@ -162,7 +163,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   const FluidState& s = f.s;
   const long groups = long(f.groups.size() / 2);
   const Clock::time_point t0 = Clock::now();
-  const int threads = cache_.reset(size_t(groups));
+  const int threads = cache_.reset(size_t(groups), kr.h);
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
   for (long gi = 0; gi < groups; ++gi) {
@@ -182,6 +183,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }
   }
+  cache_current_ = true;
   record(stages_, "density", "dfsph factor + neighbour cache", t0);
   return !bad;
 }
@@ -321,6 +323,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
 }
 
 void DfsphSolver::reorder(const std::vector<uint32_t>& order) {
+  cache_current_ = false;
   if (kd_.size() != order.size()) return;  // sized at the next density phase
   permute(kd_, order, scratch_);
   permute(kv_, order, scratch_);

@@ -22,6 +22,7 @@ class DfsphSolver : public PressureSolver {
   bool solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& box, float dt) override;
   void reorder(const std::vector<uint32_t>& order) override;
   size_t memoryBytes() const override;
+  const NeighbourCache* neighbours() const override { return cache_current_ ? &cache_ : nullptr; }
   void saveState(StateWriter& w) const override;
   void loadState(StateReader& r, size_t n) override;
 
@@ -52,6 +53,7 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
+  bool cache_current_ = false;                  // from the density phase until the grid phase reorders
   std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;

@@ -25,11 +25,17 @@ struct Group {
   simd::f8 x, y, z;
   int n;
 };
-inline void loadGroup(const FluidState& s, uint32_t b, uint32_t e, float radius, const UniformGrid& grid,
-                      Group& g, std::vector<uint32_t>& spans) {
+// The particles b .. e-1 (at most 8) as lanes.
+inline Group lanesOf(const FluidState& s, uint32_t b, uint32_t e) {
+  Group g;
   g.n = int(e - b);
   g.x = simd::loadN(&s.x[b], g.n, kLaneFar), g.y = simd::loadN(&s.y[b], g.n, kLaneFar);
   g.z = simd::loadN(&s.z[b], g.n, kLaneFar);
+  return g;
+}
+inline void loadGroup(const FluidState& s, uint32_t b, uint32_t e, float radius, const UniformGrid& grid,
+                      Group& g, std::vector<uint32_t>& spans) {
+  g = lanesOf(s, b, e);
   const float lo[3] = {simd::hmin(g.x, g.n), simd::hmin(g.y, g.n), simd::hmin(g.z, g.n)};
   const float hi[3] = {simd::hmax(g.x, g.n), simd::hmax(g.y, g.n), simd::hmax(g.z, g.n)};
   grid.rangesNear(lo, hi, radius, spans);
@@ -44,15 +50,22 @@ void forEachGroup(const std::vector<uint32_t>& groups, Body&& body) {
   for (long gi = 0; gi < n; ++gi) body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
-// As forEachGroup, with body(b, e) returning whether every value it wrote is
-// finite: true if every call did.
+// As forEachGroup, with body(gi, b, e) (gi: the group's index) returning
+// whether every value it wrote is finite: true if every call did.
 template <class Body>
-bool forEachGroupFinite(const std::vector<uint32_t>& groups, Body&& body) {
+bool forEachGroupIndexFinite(const std::vector<uint32_t>& groups, Body&& body) {
   const long n = long(groups.size() / 2);
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-  for (long gi = 0; gi < n; ++gi) bad |= body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]) ? 0 : 1;
+  for (long gi = 0; gi < n; ++gi)
+    bad |= body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]) ? 0 : 1;
   return !bad;
+}
+
+// As forEachGroupIndexFinite, with body(b, e).
+template <class Body>
+bool forEachGroupFinite(const std::vector<uint32_t>& groups, Body&& body) {
+  return forEachGroupIndexFinite(groups, [&](size_t, uint32_t b, uint32_t e) { return body(b, e); });
 }
 
 }  // namespace ff

@@ -18,7 +18,8 @@ void NeighbourCache::Buffer::reserve(size_t n) {
   j = std::move(nj), g = std::move(ng), capacity = c;
 }
 
-int NeighbourCache::reset(size_t groups) {
+int NeighbourCache::reset(size_t groups, float radius) {
+  radius_ = radius;
   const int threads = omp_get_max_threads();
   if (buffers_.size() < size_t(threads)) buffers_.resize(size_t(threads));
   for (Buffer& b : buffers_) b.size = 0;

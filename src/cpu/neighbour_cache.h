@@ -3,11 +3,14 @@
 // density phase's grid walk visits them, with one value per lane and pair (the
 // DFSPH solver keeps the kernel gradient's factor g; 0 where that lane does
 // not reach the candidate). Built once per substep while the density phase
-// searches the grid, so the solver's Jacobi passes walk a short list instead
-// of searching 27 cells with a square root and a kernel per candidate. Each
-// lane adds the same terms in the same order as the grid walk (a candidate no
-// lane reaches adds only zeros there), so the sums are unchanged. Each thread
-// appends to its own buffer.
+// searches the grid, so the solver's Jacobi passes and the viscosity force
+// walk a short list instead of searching 27 cells with a square root and a
+// kernel per candidate. "Reaches" is r^2 < kReachSlack H^2 for some lane
+// (H: radius()): a superset of every kernel's support r < H however r, q =
+// r / H and r^2 round, so a candidate left out adds exactly 0 to every lane's
+// sum. Each lane adds the same terms in the same order as the grid walk (a
+// kept candidate a lane does not reach adds only zeros there), so the sums
+// are unchanged bit for bit. Each thread appends to its own buffer.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -21,21 +24,27 @@ namespace ff {
 
 class NeighbourCache {
  public:
-  // Forgets every list and sizes the index for `groups` groups (outside a
-  // parallel region; the buffers keep their capacity). Returns the most
-  // threads that may fill it: the filling region's num_threads.
-  int reset(size_t groups);
+  // A candidate is kept where some lane has r^2 < kReachSlack H^2.
+  static constexpr float kReachSlack = 1.0001f;
+
+  // Forgets every list and sizes the index for `groups` groups of radius H
+  // (outside a parallel region; the buffers keep their capacity). Returns
+  // the most threads that may fill it: the filling region's num_threads.
+  int reset(size_t groups, float radius);
 
   // Group gi's list as it is written, from inside the filling region: room
   // for `most` candidates; put() writes one at the current end and keeps it
-  // if `keep` (branch-free), close() stores the list.
+  // if `keep` (branch-free); then value() sets the q-th kept one's 8 lane
+  // values; close() stores the list.
   class Writer {
    public:
-    void put(uint32_t j, const simd::f8& g, bool keep) {
+    void put(uint32_t j, bool keep) {
       j_[n_] = j;
-      std::memcpy(g_ + 8 * n_, &g, sizeof g);
       n_ += keep ? 1 : 0;
     }
+    size_t size() const { return n_; }
+    uint32_t index(size_t q) const { return j_[q]; }
+    void value(size_t q, const simd::f8& g) { std::memcpy(g_ + 8 * q, &g, sizeof g); }
 
    private:
     friend class NeighbourCache;
@@ -47,6 +56,9 @@ class NeighbourCache {
   void close(size_t gi, const Writer& w);
 
   size_t groups() const { return count_.size(); }
+  float radius() const { return radius_; }
+  // r^2 below which a lane reaches a candidate (kReachSlack H^2).
+  float reach2() const { return kReachSlack * radius_ * radius_; }
   uint32_t count(size_t gi) const { return count_[gi]; }
   const uint32_t* neighbours(size_t gi) const { return buffers_[owner_[gi]].j.get() + offset_[gi]; }
   // 8 lane values per candidate (load them with memcpy: no alignment).
@@ -62,6 +74,7 @@ class NeighbourCache {
   };
   std::vector<Buffer> buffers_;                   // one per thread
   std::vector<uint32_t> offset_, count_, owner_;  // per group
+  float radius_ = 0.0f;
 };
 
 }  // namespace ff

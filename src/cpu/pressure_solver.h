@@ -10,6 +10,7 @@
 #include "core/stage_time.h"
 #include "core/state_io.h"
 #include "cpu/fluid_cpu.h"
+#include "cpu/neighbour_cache.h"
 
 namespace ff {
 
@@ -32,6 +33,9 @@ class PressureSolver {
   // The grid phase reordered the particles by `order` (new k = old order[k]).
   virtual void reorder(const std::vector<uint32_t>& order) { (void)order; }
   virtual size_t memoryBytes() const { return 0; }
+  // The neighbour lists of the particles' current order and positions that
+  // the density phase built (null if it built none, or they are stale).
+  virtual const NeighbourCache* neighbours() const { return nullptr; }
   // The state a resumed run needs to stay bit-identical (warm starts); `n`
   // is the fluid's particle count.
   virtual void saveState(StateWriter& w) const { (void)w; }

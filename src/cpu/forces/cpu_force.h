@@ -10,6 +10,7 @@
 #pragma once
 #include "control/controller.h"
 #include "cpu/fluid_cpu.h"
+#include "cpu/neighbour_cache.h"
 #include "sim/backend.h"
 
 namespace ff {
@@ -21,6 +22,10 @@ struct CpuForceContext {
   const ContainerDesc& box;
   Controller& controller;  // the control particles (the control force)
   const FluidView& view;   // the fluid as the Controller reads it
+  // The density phase's neighbour lists of this substep (the pressure
+  // solver's; null where it keeps none): a force that walks the neighbours
+  // within H may walk these instead of the grid.
+  const NeighbourCache* neighbours;
 };
 
 class CpuForce {

@@ -17,13 +17,18 @@ using simd::f8;
 
 // Viscosity sums of the particles b .. e-1 (kernels/forces.cl), 8 lanes each
 // of x, y, z in out[0..23]: lane by lane, the neighbours in ascending sorted
-// order, as the OpenCL kernels.
-FF_SIMD_CLONES void viscositySums(const CpuFluid& f, uint32_t b, uint32_t e, float h, float mass,
-                                  float* out) {
+// order, as the OpenCL kernels. With `nc` (the density phase's lists, group
+// gi) it walks the candidates a lane reaches, in the same order (the others
+// add exactly 0), else the grid.
+FF_SIMD_CLONES void viscositySums(const CpuFluid& f, const NeighbourCache* nc, size_t gi, uint32_t b,
+                                  uint32_t e, float h, float mass, float* out) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
   Group g;
-  loadGroup(s, b, e, h, f.grid, g, spans);
+  if (nc)
+    g = lanesOf(s, b, e);
+  else
+    loadGroup(s, b, e, h, f.grid, g, spans);
   const int n = g.n;
   const float lap_coef = ff_visc_lap_coef(h);
   const f8 vxi = simd::loadN(&s.vx[b], n, 0.0f), vyi = simd::loadN(&s.vy[b], n, 0.0f),
@@ -32,13 +37,20 @@ FF_SIMD_CLONES void viscositySums(const CpuFluid& f, uint32_t b, uint32_t e, flo
   const float *vx = s.vx.data(), *vy = s.vy.data(), *vz = s.vz.data(), *rho = f.rho.data();
   const f8 zero = simd::splat(0.0f);
   f8 fx = zero, fy = zero, fz = zero;
-  for (size_t r = 0; r < spans.size(); r += 2)
-    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
-      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      const f8 dist = simd::sqrt8(dx * dx + dy * dy + dz * dz);
-      const f8 cv = ff_visc_pair(ff_visc_lap(dist, h, lap_coef), rho[j], mass);
-      fx += cv * (vx[j] - vxi), fy += cv * (vy[j] - vyi), fz += cv * (vz[j] - vzi);
-    }
+  const auto add = [&](uint32_t j) __attribute__((always_inline)) {
+    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+    const f8 dist = simd::sqrt8(dx * dx + dy * dy + dz * dz);
+    const f8 cv = ff_visc_pair(ff_visc_lap(dist, h, lap_coef), rho[j], mass);
+    fx += cv * (vx[j] - vxi), fy += cv * (vy[j] - vyi), fz += cv * (vz[j] - vzi);
+  };
+  if (nc) {
+    const uint32_t* js = nc->neighbours(gi);
+    const uint32_t m = nc->count(gi);
+    for (uint32_t q = 0; q < m; ++q) add(js[q]);
+  } else {
+    for (size_t r = 0; r < spans.size(); r += 2)
+      for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) add(j);
+  }
   const f8 sums[3] = {fx, fy, fz};
   for (int k = 0; k < 3; ++k) simd::storeN(out + 8 * k, sums[k], n);
 }
@@ -51,9 +63,15 @@ class CpuViscosity : public CpuForce {
     const float h = p.smoothing_radius, m = p.particle_mass, mu = p.viscosity;
     if (!(mu > 0.0f)) return true;  // adds exactly 0
     CpuFluid& f = c.fluid;
-    return forEachGroupFinite(f.groups, [&](uint32_t b, uint32_t e) {
+    // The lists hold every neighbour within their radius: enough where it
+    // is at least h.
+    const NeighbourCache* nc =
+        c.neighbours && c.neighbours->radius() >= h && c.neighbours->groups() == f.groups.size() / 2
+            ? c.neighbours
+            : nullptr;
+    return forEachGroupIndexFinite(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
       float sums[24];
-      viscositySums(f, b, e, h, m, sums);
+      viscositySums(f, nc, gi, b, e, h, m, sums);
       bool finite = true;
       for (uint32_t i = b; i < e; ++i) {
         const size_t l = i - b;

@@ -32,11 +32,14 @@ __kernel void control_gather(__global const uint* order, uint nc, __global const
   sr2[k] = r * r, scoef[k] = ff_poly6_coef(r);
 }
 
-// The recapture's centre (out[0..2]), fade (out[3]) and whether it aims at
+// The recapture's centre (out[0..2]), fade (out[3]), whether it aims at
 // the centre (out[4]: 1 where the centre lies within `spacing` of a control
-// particle, ff_recapture_among; else 0 and the field of targets), from the
-// control particles' positions and s in their fixed order: one work-item, as
-// Controller::addForces sums them. enabled: params.control.recapture > 0.
+// particle, ff_recapture_among; else 0 and the field of targets), whether it
+// acts (out[5]: `enabled`, however full the shape reads) and whether its field
+// seeds from every control particle (out[6]: none is unfilled,
+// ff_recapture_seed_any), from the control particles' positions and s in
+// their fixed order: one work-item, as Controller::addForces sums them.
+// enabled: params.control.recapture > 0.
 // sx, sy, sz, start: the control particles in their grid's order, and the grid.
 __kernel void control_recapture_centre(__global const float* x, __global const float* y,
                                        __global const float* z, __global const float* s, uint nc, int enabled,
@@ -55,10 +58,11 @@ __kernel void control_recapture_centre(__global const float* x, __global const f
   const float o3[3] = {geo.x, geo.y, geo.z};
   const int n3[3] = {dims.x, dims.y, dims.z};
   out[0] = c[0], out[1] = c[1], out[2] = c[2], out[3] = fade;
-  out[4] =
-      fade > 0.0f && ff_recapture_among(start, sx, sy, sz, c[0], c[1], c[2], spacing, o3, cell, geo.w, n3)
-          ? 1.0f
-          : 0.0f;
+  out[4] = enabled && ff_recapture_among(start, sx, sy, sz, c[0], c[1], c[2], spacing, o3, cell, geo.w, n3)
+               ? 1.0f
+               : 0.0f;
+  out[5] = enabled ? 1.0f : 0.0f;
+  out[6] = ff_recapture_seed_any(uw) ? 1.0f : 0.0f;
 }
 
 // The accelerations of fluid particle e from its sums over the control
@@ -84,7 +88,7 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
   reached[e] = wsum > 0.0f ? 1 : 0;
   float bx = ax[e], by = ay[e], bz = az[e];
   const float fade = rcentre[3];
-  if (fade > 0.0f && (!use_mask || controlled[id[e]])) {
+  if (rcentre[5] != 0.0f && (!use_mask || controlled[id[e]])) {
     const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
     const int m3[3] = {fdims.x, fdims.y, fdims.z};
     const float o3[3] = {fgeo.x, fgeo.y, fgeo.z};

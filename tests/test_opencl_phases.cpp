@@ -542,8 +542,10 @@ ff::SceneDesc torusScene() {
   return s;
 }
 
-void checkRecaptureField(ff::OpenClBackend::KernelVariant variant) {
-  auto p = makePair(3, torusScene());
+// full: the torus lies in a block of fluid (fftest::immersedTorusScene): no
+// control particle is unfilled, and the field names any control particle.
+void checkRecaptureField(ff::OpenClBackend::KernelVariant variant, bool full = false) {
+  auto p = makePair(3, full ? fftest::immersedTorusScene() : torusScene());
   ASSERT_TRUE(p);
   ff::CpuBackend& cpu = p->cpu;
   ff::OpenClBackend& ocl = *p->ocl;
@@ -561,7 +563,8 @@ void checkRecaptureField(ff::OpenClBackend::KernelVariant variant) {
   const std::vector<uint32_t> seeds = ocl.readRecaptureField();
   ASSERT_FALSE(field.seeds().empty());
   EXPECT_TRUE(seeds == field.seeds()) << "the recapture's fields differ";
-  // Brute force: the unfilled control particles, in the control grid's order.
+  // Brute force: the unfilled control particles (all of them where none
+  // is), in the control grid's order.
   const ff::ControlSet& c = cpu.controller().set();
   const std::vector<float>& s = cpu.controller().fields().s;
   const std::vector<uint32_t>& order = cpu.controller().controlGrid().order();
@@ -569,7 +572,11 @@ void checkRecaptureField(ff::OpenClBackend::KernelVariant variant) {
   size_t unfilled = 0, exact = 0;
   double excess = 0.0;
   for (uint32_t k = 0; k < order.size(); ++k) unfilled += s[order[k]] > 0.5f;
-  ASSERT_GT(unfilled, 0u);
+  if (full)
+    ASSERT_EQ(unfilled, 0u) << "the immersed torus has an unfilled control particle";
+  else
+    ASSERT_GT(unfilled, 0u);
+  auto candidate = [&](uint32_t i) { return full || s[i] > 0.5f; };
   double worst = 0.0;
   for (int z = 0; z < g.m[2]; ++z)
     for (int y = 0; y < g.m[1]; ++y)
@@ -582,10 +589,10 @@ void checkRecaptureField(ff::OpenClBackend::KernelVariant variant) {
         };
         double nearest = 1e30;
         for (uint32_t k = 0; k < order.size(); ++k)
-          if (s[order[k]] > 0.5f) nearest = std::min(nearest, dist(order[k]));
+          if (candidate(order[k])) nearest = std::min(nearest, dist(order[k]));
         const uint32_t k = field.seeds()[(size_t(z) * g.m[1] + y) * g.m[0] + x];
         ASSERT_LT(k, order.size());
-        EXPECT_GT(s[order[k]], 0.5f) << "a field cell names a filled control particle";
+        EXPECT_TRUE(candidate(order[k])) << "a field cell names a filled control particle";
         const double d = dist(order[k]);
         worst = std::max(worst, d - nearest);
         excess += d - nearest;
@@ -613,6 +620,14 @@ TEST(OpenClPhases, RecaptureFieldAndForcesMatchTheCpuBackendOneParticlePerWorkIt
 }
 TEST(OpenClPhases, RecaptureFieldAndForcesMatchTheCpuBackendEightLanes) {
   checkRecaptureField(ff::OpenClBackend::KernelVariant::Lanes);
+}
+// A shape that reads full: the recapture still acts on the fluid out of
+// reach, aimed through a field of all the control particles.
+TEST(OpenClPhases, RecaptureOfAFullShapeMatchesTheCpuBackendOneParticlePerWorkItem) {
+  checkRecaptureField(ff::OpenClBackend::KernelVariant::Scalar, true);
+}
+TEST(OpenClPhases, RecaptureOfAFullShapeMatchesTheCpuBackendEightLanes) {
+  checkRecaptureField(ff::OpenClBackend::KernelVariant::Lanes, true);
 }
 
 // GPU rounding emulated on PoCL (ff::GpuRounding): the kernels built as a GPU

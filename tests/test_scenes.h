@@ -33,6 +33,18 @@ inline ff::TargetSpec target(ff::TargetKind kind, int control_count = 0) {
   return t;
 }
 
+// A torus (control_count 700) of a quarter of the fluid's volume, formed over
+// a block 30 x 16 x 30 particles wide: its control particles all lie in the
+// fluid (each reads filled), the block's corners out of their reach.
+inline ff::SceneDesc immersedTorusScene() {
+  ff::SceneDesc s = blockScene(ff::Vec3(0.36f, 0.25f, 0.36f), ff::Vec3(0.085f, 0.0f, 0.085f), 30, 16, 30);
+  ff::TargetSpec torus = target(ff::TargetKind::Torus, 700);
+  torus.torus_major = 1.0f, torus.torus_minor = 0.3f;
+  torus.volume = 0.25f * float(30 * 16 * 30) * s.params.fluid.restVolume();
+  s.schedule.push_back({0.0, torus});
+  return s;
+}
+
 // Scene JSON: a cube container of side `box` holding an n^3 block at `origin`
 // (x, 0, z), with `extra` (e.g. "\"target\": \"sphere\"") added to the top level.
 inline std::string blockSceneJson(const std::string& name, double box, double x, double z, int n,

@@ -87,12 +87,12 @@ void ClControl::apply(ClForceContext& c, float dt) {
   const float go[3] = {cg.geom.ox, cg.geom.oy, cg.geom.oz};
   const RecaptureFieldGeom fg = recaptureFieldGeom(gn, go, cg.geom.cell);
   d.rfield_cells = fg.cells();
-  d.rcentre.ensure(d.ctx.context(), 5 * sizeof(float));
+  d.rcentre.ensure(d.ctx.context(), 7 * sizeof(float));
   launch(q, recapture_centre_, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(), cl_uint(nc),
          cl_int(cp.recapture > 0.0f ? 1 : 0), d.sx.get(), d.sy.get(), d.sz.get(), cg.start.get(),
          cg.geom.geo(), cg.geom.dims(), cg.geom.cell, FF_CBRT(cp_volume), d.rcentre.get());
   for (DeviceBuffer& b : d.rseeds) b.ensure(d.ctx.context(), d.rfield_cells * sizeof(cl_uint));
-  if (cp.recapture > 0.0f) {  // else the fade is 0 and the forces never read the field
+  if (cp.recapture > 0.0f) {  // else the forces never read the field
     launch(q, recapture_seed_, d.rfield_cells, cg.start.get(), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(),
            f4(go[0], go[1], go[2], cg.geom.cell), cg.geom.dims(), i4(fg.m[0], fg.m[1], fg.m[2], 0),
            d.rcentre.get(), d.rseeds[0].get());

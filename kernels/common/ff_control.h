@@ -120,10 +120,15 @@ FF_FN float ff_recapture_centre_weight(float s) {
   return ff_recapture_weight(s) + 0.01f;
 }
 
-/* The recapture's strength from the unfilled weight u = sum_i
- * ff_recapture_weight(s_i) of nc control particles: full while at least a
- * tenth of the shape is unfilled, fading linearly to 0 as it fills, so that
- * a filled shape draws no more fluid into itself. */
+/* The recapture's fade from the unfilled weight u = sum_i
+ * ff_recapture_weight(s_i) of nc control particles: 1 while at least a
+ * tenth of the shape is unfilled, falling linearly to 0 as it fills, so that
+ * a filled shape draws no more of the fluid within its reach into itself.
+ * The fade scales only the recapture of fluid partly within reach: fluid
+ * wholly out of reach is drawn back while the recapture is on however full
+ * the shape reads (ff_recapture_strength), since SPH density fills a voxel at
+ * half the rest density and a shape reads full (fade 0) while part of its
+ * fluid still lies out of reach (7% of Fig. 12's box, on the floor). */
 FF_FN float ff_recapture_fade(float u, float nc) {
   return nc > 0.0f ? FF_FMIN(1.0f, u / (0.1f * nc)) : 0.0f;
 }
@@ -132,8 +137,9 @@ FF_FN float ff_recapture_fade(float u, float nc) {
  * share of it that is out of the control's reach (1 where no control particle
  * is within the radius, 0 where the control carries its whole weight:
  * ff_control_held without the compensation factor). Fluid wholly out of reach
- * is drawn back at least at half strength however full the shape is: it then
- * gathers at the shape, where eq. 4-5 take in only what has room. */
+ * is drawn back at least at half strength however full the shape is (fade 0
+ * included): it then gathers at the shape, where eq. 4-5 take in only what
+ * has room. */
 FF_FN float ff_recapture_strength(float wsum, float v_c, float full_at, float fade) {
   const float share = 1.0f - ff_control_held(wsum, v_c, full_at);
   return wsum > 0.0f ? share * fade : FF_FMAX(fade, 0.5f);

@@ -1,12 +1,13 @@
 // ff_recapture_field.h - where the recapture aims each fluid particle: at the
-// nearest unfilled control particle, so never outside the shape (the centre of
-// a torus's unfilled part lies in its hole). Shared by the OpenMP backend
+// nearest unfilled control particle (the nearest of all of them while none is
+// unfilled), so never outside the shape (the centre of a torus's unfilled part
+// lies in its hole). Shared by the OpenMP backend
 // (Controller::addForces) and the OpenCL kernels (recapture_field.cl,
 // control_forces.cl), bit for bit.
 //
 // A coarse field over the control particles' grid (cells of radius /
 // FF_CONTROL_GRID_DIVISIONS) holds, per field cell of FF_RECAPTURE_FIELD_SPAN^3
-// grid cells, the sorted position of an unfilled control particle near its
+// grid cells, the sorted position of a candidate (unfilled) control particle near its
 // centre: seeded from the control particles in the cell, then spread by jump
 // flooding (Rong & Tan 2006: passes with steps N/2, N/4, .., 1, and one more
 // of step 1), every pass reading only the previous one. A fluid particle takes
@@ -47,6 +48,20 @@ FF_FN int ff_recapture_unfilled(float s) {
   return ff_recapture_weight(s) > 0.0f;
 }
 
+/* Whether the field may name a control particle of density scale s: an
+ * unfilled one, or any while none is unfilled (`any`: the unfilled weight is
+ * 0): the shape reads full, and fluid still out of reach is drawn to the
+ * nearest control particle, where eq. 4-5 take in only what has room. */
+FF_FN int ff_recapture_candidate(float s, int any) {
+  return any || ff_recapture_unfilled(s);
+}
+
+/* Whether the field seeds from every control particle: none is unfilled
+ * (the unfilled weight u = sum_i ff_recapture_weight(s_i) is 0). */
+FF_FN int ff_recapture_seed_any(float u) {
+  return u <= 0.0f;
+}
+
 FF_FN float ff_recapture_d2(float ax, float ay, float az, float bx, float by, float bz) {
   const float dx = bx - ax, dy = by - ay, dz = bz - az;
   return (dx * dx + dy * dy) + dz * dz;
@@ -62,13 +77,14 @@ FF_FN float ff_recapture_cell_centre(int c, float o, float fcell) {
   return o + ((float)c + 0.5f) * fcell;
 }
 
-/* The seed of field cell (cx, cy, cz): of the unfilled control particles in
- * its grid cells, the one nearest its centre (FF_RECAPTURE_NONE if none).
+/* The seed of field cell (cx, cy, cz): of the candidate control particles
+ * in its grid cells (ff_recapture_candidate: the unfilled ones, or all of
+ * them where `any`), the one nearest its centre (FF_RECAPTURE_NONE if none).
  * start: the grid's cell ranges (n grid cells per axis, origin o, cell size
  * `cell`); sx, sy, sz, ss: the control particles in the grid's order. */
 FF_FN uint ff_recapture_seed(FF_GLOBAL const uint* start, FF_GLOBAL const float* sx,
                              FF_GLOBAL const float* sy, FF_GLOBAL const float* sz, FF_GLOBAL const float* ss,
-                             int cx, int cy, int cz, const int n[3], const float o[3], float cell) {
+                             int any, int cx, int cy, int cz, const int n[3], const float o[3], float cell) {
   const float fcell = cell * (float)FF_RECAPTURE_FIELD_SPAN;
   const float px = ff_recapture_cell_centre(cx, o[0], fcell), py = ff_recapture_cell_centre(cy, o[1], fcell),
               pz = ff_recapture_cell_centre(cz, o[2], fcell);
@@ -84,7 +100,7 @@ FF_FN uint ff_recapture_seed(FF_GLOBAL const uint* start, FF_GLOBAL const float*
       const uint row = ff_cell_index(0, y, z, n[0], n[1]);
       const uint b = start[row + (uint)x0], e = start[row + (uint)x1];
       for (uint k = b; k < e; ++k) {
-        if (!ff_recapture_unfilled(ss[k])) continue;
+        if (!ff_recapture_candidate(ss[k], any)) continue;
         const float d2 = ff_recapture_d2(px, py, pz, sx[k], sy[k], sz[k]);
         if (ff_recapture_before(d2, k, best_d2, best)) best = k, best_d2 = d2;
       }

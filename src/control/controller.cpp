@@ -193,15 +193,20 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     ucx += w * set_.x[i], ucy += w * set_.y[i], ucz += w * set_.z[i], cw += w;
     uw += ff_recapture_weight(fields_.s[i]);
   }
+  // It acts whenever it is on: the fade scales it on fluid partly within
+  // reach, fluid wholly out of reach is drawn back however full the shape
+  // reads (ff_recapture_fade).
   const ff_float3 ucentre = FF_F3(ucx / cw, ucy / cw, ucz / cw);
-  const float fade = cp_.recapture > 0.0f ? ff_recapture_fade(uw, float(n)) : 0.0f;
+  const bool acts = cp_.recapture > 0.0f;
+  const float fade = acts ? ff_recapture_fade(uw, float(n)) : 0.0f;
   const int gn[3] = {cp_grid_.nx(), cp_grid_.ny(), cp_grid_.nz()};
   const float go[3] = {cp_grid_.originX(), cp_grid_.originY(), cp_grid_.originZ()};
   const bool at_centre =
-      fade > 0.0f && ff_recapture_among(cp_grid_.cellStart().data(), sx_.data(), sy_.data(), sz_.data(),
-                                        ucentre.x, ucentre.y, ucentre.z, FF_CBRT(cp_volume), go,
-                                        cp_grid_.cellSize(), cp_grid_.invCellSize(), gn);
-  if (fade > 0.0f && !at_centre) rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data());
+      acts && ff_recapture_among(cp_grid_.cellStart().data(), sx_.data(), sy_.data(), sz_.data(), ucentre.x,
+                                 ucentre.y, ucentre.z, FF_CBRT(cp_volume), go, cp_grid_.cellSize(),
+                                 cp_grid_.invCellSize(), gn);
+  if (acts && !at_centre)
+    rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data(), ff_recapture_seed_any(uw) != 0);
   const RecaptureFieldGeom& rg = rfield_.geom();
   const uint32_t* seeds = rfield_.seeds().data();
   const float rspeed = cp_.recaptureSpeed(f.gravity), rrate = cp_.recaptureRate(f.gravity);
@@ -220,7 +225,7 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
       const size_t l = k - b;
       const float wsum = sums[24 + l];
       const size_t i = sf.order ? sf.order[k] : k;
-      const bool recaptured = fade > 0.0f && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
+      const bool recaptured = acts && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
       if (recaptured) {
         const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
         ff_float3 c;

@@ -16,9 +16,18 @@ AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float flui
   return a;
 }
 
+Standing standingFor(const float gravity[3]) {
+  Standing s;
+  float most = 0.0f;
+  for (int d = 0; d < 3; ++d)
+    if (std::fabs(gravity[d]) > most)
+      most = std::fabs(gravity[d]), s.axis = d, s.side = gravity[d] < 0 ? -1 : 1;
+  return s;
+}
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
-                                 const AdaptiveControl& adaptive) {
+                                 const AdaptiveControl& adaptive, const Standing& standing) {
   const size_t n = target.reference.size();
   if (n == 0) throw Error("target '" + target.label + "' has no reference particles");
   Vec3 tlo = target.reference[0], thi = target.reference[0];
@@ -36,6 +45,8 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     for (int d = 0; d < 3; ++d) {
       float u = text[d] > 0 ? (r[d] - tlo[d]) / text[d] : 0.5f;
       pos[d] = lo[d] + u * rext[d];
+      if (d == standing.axis && text[d] < rext[d])  // stands on the region's floor, unstretched
+        pos[d] = standing.side < 0 ? lo[d] + (r[d] - tlo[d]) : hi[d] - (thi[d] - r[d]);
     }
     set.x[p] = pos.x(), set.y[p] = pos.y(), set.z[p] = pos.z();
     set.vx[p] = set.vy[p] = set.vz[p] = 0.0f;

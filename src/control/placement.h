@@ -37,8 +37,23 @@ struct AdaptiveControl {
 // above cp.radius.
 AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing);
 
+// Where a shape lower than its region stands (a target change: the region
+// is the fluid of the current shape, which rests on the floor): along `axis`
+// (gravity's, -1: none) on the region's low side (side -1) or high side (+1),
+// unstretched, instead of stretched over the region's whole extent, whose
+// middle the shape would otherwise form around, in the air above the fluid
+// that then falls out of its reach (Fig. 12's box, 7% of its fluid, on the
+// water preset). A shape at least as tall as the region is placed as before.
+struct Standing {
+  int axis = -1, side = -1;
+};
+// Standing on the floor for `gravity`: its largest component's axis, on the
+// side it points to (none for zero gravity).
+Standing standingFor(const float gravity[3]);
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
-                                 const AdaptiveControl& adaptive = AdaptiveControl());
+                                 const AdaptiveControl& adaptive = AdaptiveControl(),
+                                 const Standing& standing = Standing());
 
 }  // namespace ff

@@ -24,7 +24,7 @@ RecaptureFloodSteps recaptureFloodSteps(const RecaptureFieldGeom& g) {
 }
 
 void RecaptureField::build(const UniformGrid& grid, const float* sx, const float* sy, const float* sz,
-                           const float* ss) {
+                           const float* ss, bool any) {
   const int n[3] = {grid.nx(), grid.ny(), grid.nz()};
   const float o[3] = {grid.originX(), grid.originY(), grid.originZ()};
   const float cell = grid.cellSize();
@@ -36,7 +36,7 @@ void RecaptureField::build(const UniformGrid& grid, const float* sx, const float
   const int mx = g.m[0], my = g.m[1];
 #pragma omp parallel for schedule(static) if (cells > kParallelLightLoop)
   for (long c = 0; c < cells; ++c)
-    seeds_[size_t(c)] = ff_recapture_seed(start, sx, sy, sz, ss, int(c % mx), int(c / mx % my),
+    seeds_[size_t(c)] = ff_recapture_seed(start, sx, sy, sz, ss, any ? 1 : 0, int(c % mx), int(c / mx % my),
                                           int(c / (long(mx) * my)), n, o, cell);
   for (int step : recaptureFloodSteps(g)) {
 #pragma omp parallel for schedule(static) if (cells > kParallelLightLoop / 8)

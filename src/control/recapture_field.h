@@ -33,8 +33,10 @@ class RecaptureField {
  public:
   // Seeds the field from the control particles (sx .. ss: in `grid`'s order)
   // and floods it. Every cell then names an unfilled control particle (a
-  // sorted position) if there is one.
-  void build(const UniformGrid& grid, const float* sx, const float* sy, const float* sz, const float* ss);
+  // sorted position) if there is one; with `any` (none is unfilled), any
+  // control particle.
+  void build(const UniformGrid& grid, const float* sx, const float* sy, const float* sz, const float* ss,
+             bool any);
   const RecaptureFieldGeom& geom() const { return geom_; }
   const std::vector<uint32_t>& seeds() const { return seeds_; }
   size_t memoryBytes() const { return (seeds_.capacity() + scratch_.capacity()) * sizeof(uint32_t); }

@@ -285,7 +285,8 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   // the backend keep the previous target, which the cache still holds.
   ControlSet placed =
       placeControlParticles(shape, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max,
-                            adaptiveControl(scene_.params.control, shape.grid.voxel, fp.restSpacing()));
+                            adaptiveControl(scene_.params.control, shape.grid.voxel, fp.restSpacing()),
+                            target_ ? standingFor(fp.gravity) : Standing());
   target_ = &shape;
   target_volume_ = volume;
   target_spec_ = spec;

@@ -188,18 +188,30 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   return !bad;
 }
 
-void DfsphSolver::rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz) {
+double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
+  const long n = long(f.size());
+  const float inv_rho0 = 1.0f / rho0_;
+  const float *vx = ux_.data(), *vy = uy_.data(), *vz = uz_.data();
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float rs[8];
     rateSums(f, cache_, gi, vx, vy, vz, b, e, rs);
     for (uint32_t i = b; i < e; ++i) {
       const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
-      rate_[i] = ff_dfsph_rate(rs[i - b], vol_, u, wg);
+      const float rate = ff_dfsph_rate(rs[i - b], vol_, u, wg);
+      b_[i] = density ? ff_dfsph_density_source(f.rho[i] * inv_rho0, rate, dt)
+                      : ff_dfsph_divergence_source(rate, bulk_[i]);
+      inc_[i] = ff_dfsph_increment(b_[i], alpha_[i]);  // the next iteration's, if there is one
     }
   });
+  double err = 0.0;  // summed in the particles' order, as before the passes were merged
+#pragma omp parallel for schedule(static) reduction(+ : err)
+  for (long i = 0; i < n; ++i) err += double(b_[size_t(i)]);
+  return n ? err / double(n) : 0.0;
 }
 
-void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k) {
+void DfsphSolver::applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale,
+                                      std::vector<float>* total) {
+  const float inv = 1.0f / scale;
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float ks[24];
     kappaSums(f, cache_, gi, k.data(), b, e, ks);
@@ -208,35 +220,10 @@ void DfsphSolver::velocityChange(const CpuFluid& f, const std::vector<float>& k)
       const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
       float du[3];
       ff_dfsph_velocity_change(sum, k[i], vol_, wg, du);
-      dux_[i] = du[0], duy_[i] = du[1], duz_[i] = du[2];
+      ux_[i] += du[0] * inv, uy_[i] += du[1] * inv, uz_[i] += du[2] * inv;
+      if (total) (*total)[i] += k[i];
     }
   });
-}
-
-double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
-  const long n = long(f.size());
-  rates(f, ux_.data(), uy_.data(), uz_.data());
-  const float inv_rho0 = 1.0f / rho0_;
-  double err = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : err)
-  for (long i = 0; i < n; ++i) {
-    const size_t q = size_t(i);
-    b_[q] = density ? ff_dfsph_density_source(f.rho[q] * inv_rho0, rate_[q], dt)
-                    : ff_dfsph_divergence_source(rate_[q], bulk_[q]);
-    err += double(b_[q]);
-  }
-  return n ? err / double(n) : 0.0;
-}
-
-void DfsphSolver::applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale) {
-  velocityChange(f, k);
-  const long n = long(f.size());
-  const float inv = 1.0f / scale;
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
-    const size_t q = size_t(i);
-    ux_[q] += dux_[q] * inv, uy_[q] += duy_[q] * inv, uz_[q] += duz_[q] * inv;
-  }
 }
 
 int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol,
@@ -247,7 +234,7 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
   // Warm start: the last substep's k where this one compresses too.
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) k[size_t(i)] = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
-  applyVelocityChange(f, k, scale);
+  applyVelocityChange(f, k, scale, nullptr);
   err = sources(f, density, dt);
   int it = 0;
   for (;;) {
@@ -257,14 +244,9 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
       break;
     }
     // One Jacobi iteration: the increment that removes each particle's
-    // remaining compression on its own, applied to the velocities.
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) {
-      const size_t q = size_t(i);
-      inc_[q] = ff_dfsph_increment(b_[q], alpha_[q]);
-      k[q] += inc_[q];
-    }
-    applyVelocityChange(f, inc_, scale);
+    // remaining compression on its own (sources() set it), added to k and
+    // applied to the velocities.
+    applyVelocityChange(f, inc_, scale, &k);
     err = sources(f, density, dt);
     ++it;
   }
@@ -278,7 +260,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
     throw Error("dfsph: the pressure phase ran before the density phase");
   if (n == 0) return true;
   FluidState& s = f.s;
-  for (auto* a : {&b_, &rate_, &dux_, &duy_, &duz_, &inc_}) a->resize(size_t(n));
+  for (auto* a : {&b_, &inc_}) a->resize(size_t(n));
   rho0_ = p.rest_density;
   ux_ = s.vx, uy_ = s.vy, uz_ = s.vz;
   // k scales as the pressure times dt^2 (density) or dt (divergence).
@@ -349,8 +331,7 @@ void DfsphSolver::loadState(StateReader& r, size_t n) {
 
 size_t DfsphSolver::memoryBytes() const {
   size_t floats = 0;
-  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &kd_, &kv_, &b_, &rate_, &dux_, &duy_, &duz_, &ux_,
-                        &uy_, &uz_, &scratch_})
+  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &kd_, &kv_, &b_, &inc_, &ux_, &uy_, &uz_, &scratch_})
     floats += v->capacity();
   return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
 }

@@ -39,14 +39,12 @@ class DfsphSolver : public PressureSolver {
   int iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol, int min_iterations,
               float warm, std::vector<float>& k);
   // b_ = each particle's compression (rate) that the velocities u_ still
-  // cause; returns its mean.
+  // cause, and inc_ its Jacobi increment; returns the mean of b_.
   double sources(const CpuFluid& f, bool density, float dt);
-  // u_ += the velocity change of k, over `scale`.
-  void applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale);
-  // du_ = the velocity change of k (before the division by `scale`).
-  void velocityChange(const CpuFluid& f, const std::vector<float>& k);
-  // rate_ = the rate of rho_hat of the velocities (vx, vy, vz).
-  void rates(const CpuFluid& f, const float* vx, const float* vy, const float* vz);
+  // u_ += the velocity change of k, over `scale`; and total += k if given
+  // (one pass over the neighbour cache).
+  void applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale,
+                           std::vector<float>* total);
 
   float vol_ = 0.0f;                            // the lattice volume V (ff_dfsph_lattice_volume)
   float vol_spacing_ = 0.0f, vol_h_ = 0.0f;     // what vol_ was computed for
@@ -55,7 +53,7 @@ class DfsphSolver : public PressureSolver {
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   bool cache_current_ = false;                  // from the density phase until the grid phase reorders
   std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
-  std::vector<float> inc_, b_, rate_, dux_, duy_, duz_, ux_, uy_, uz_, scratch_;
+  std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;
   float last_dt_ = 0.0f, rho0_ = 1.0f;
 };

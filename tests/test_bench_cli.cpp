@@ -1,6 +1,7 @@
 // `flowform bench`: the CSV it writes (columns, one row per phase and a total
-// consistent with the phases), the Table 1 control counts, the plots and the
-// messages for bad input. No timing is asserted.
+// consistent with the phases, the stage rows inside the phases), the Table 1
+// control counts, the plots and the messages for bad input. No timing is
+// asserted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -58,8 +59,10 @@ std::vector<Row> readCsv(const fs::path& p, std::string* header) {
     auto f = splitCsv(line);
     EXPECT_EQ(f.size(), 9u) << line;
     if (f.size() != 9) continue;
-    rows.push_back({f[0], f[1], f[2], f[5], std::stol(f[3]), std::stol(f[4]), std::stod(f[6]),
-                    std::stod(f[7]), std::stod(f[8])});
+    // A stage row leaves min and max empty.
+    const auto num = [](const std::string& v) { return v.empty() ? std::nan("") : std::stod(v); };
+    rows.push_back(
+        {f[0], f[1], f[2], f[5], std::stol(f[3]), std::stol(f[4]), num(f[6]), num(f[7]), num(f[8])});
   }
   return rows;
 }
@@ -97,9 +100,11 @@ TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
   std::string header;
   const auto rows = readCsv(csv, &header);
   EXPECT_EQ(header, "scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max");
-  std::map<std::string, std::vector<Row>> runs;  // backend+device+control -> rows
-  for (const Row& row : rows)
-    runs[row.backend + "|" + row.device + "|" + std::to_string(row.control)].push_back(row);
+  std::map<std::string, std::vector<Row>> runs, stages;  // backend+device+control -> phase, stage rows
+  for (const Row& row : rows) {
+    const std::string key = row.backend + "|" + row.device + "|" + std::to_string(row.control);
+    (row.phase.find('/') == std::string::npos ? runs : stages)[key].push_back(row);
+  }
   // cpu at two control counts (500, 1000), and the same for each OpenCL device.
   ASSERT_GE(runs.size(), 2u);
   bool has_cpu = false;
@@ -126,6 +131,27 @@ TEST(BenchCli, ControlSweepCsvHasEveryPhaseAndAConsistentTotal) {
     EXPECT_NEAR(double(total.fluid), 12000.0, 200.0);
     // The placed control count is within the voxel search's 3% of the asked one.
     EXPECT_TRUE(std::abs(total.control - 500) <= 15 || std::abs(total.control - 1000) <= 30) << total.control;
+    // The stage rows ("PHASE/STAGE", the mean per step, no min or max): each
+    // lies inside a phase, so the stages of a phase add up to at most its
+    // largest step. The OpenMP backend times each force plug-in.
+    std::map<std::string, double> stage_sum;
+    bool viscosity = false;
+    for (const Row& st : stages[key]) {
+      const std::string phase = st.phase.substr(0, st.phase.find('/'));
+      EXPECT_NE(std::find(kPhases.begin(), kPhases.end(), phase), kPhases.end()) << st.phase;
+      EXPECT_GE(st.med, 0.0) << st.phase;
+      EXPECT_TRUE(std::isnan(st.min) && std::isnan(st.max)) << st.phase;
+      stage_sum[phase] += st.med;
+      viscosity |= st.phase == "forces/viscosity";
+    }
+    for (size_t i = 0; i < kPhases.size(); ++i) {
+      if (stage_sum.count(kPhases[i])) {
+        EXPECT_LE(stage_sum[kPhases[i]], rs[i].max * (1 + 1e-5)) << key << " " << kPhases[i];
+      }
+    }
+    if (rs.front().backend == "cpu") {
+      EXPECT_TRUE(viscosity) << key;
+    }
   }
   EXPECT_TRUE(has_cpu);
   // The markdown table on stdout names every phase.

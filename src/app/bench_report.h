@@ -1,6 +1,8 @@
 // bench_report.h - what `flowform bench` prints and writes: a markdown table,
 // the CSV (scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max;
-// one row per phase and a `total` row) and PNG plots.
+// one row per phase, a `total` row, then one row per named stage inside a
+// phase, "PHASE/STAGE", with its mean ms per step as ms_median and ms_min,
+// ms_max empty) and PNG plots.
 #pragma once
 #include <cstdio>
 #include <string>

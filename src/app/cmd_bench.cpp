@@ -308,7 +308,10 @@ std::function<int()> addBenchCommand(CLI::App& app) {
       "--budget", o->budget_s,
       "Seconds each sweep may take per backend; it stops before a size that would not fit (default "
       "180)");
-  cmd->add_option("--csv", o->csv, "Write scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max");
+  cmd->add_option(
+      "--csv", o->csv,
+      "Write scene,backend,device,fluid,control,phase,ms_median,ms_min,ms_max (a row per phase, a total, "
+      "then a row per named stage, phase PHASE/STAGE, its mean ms per step as ms_median)");
   cmd->add_flag("--plot", o->plot, "Write PNG plots next to the CSV (python3-matplotlib)");
   cmd->add_option("--metrics-every", o->metrics_every,
                   "Metrics every K steps (default 1); the host-sync count separates steps with and without")

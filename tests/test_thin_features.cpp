@@ -177,6 +177,57 @@ double slabShare(double z0, double z1, double h) {
   return sum * ((z1 - z0) / n) / 3.0;
 }
 
+// Clusters of a share of the shape's length (placement.h, clusterSize): a
+// long thin bar 60 voxels tall gets clusters 2 round(60 / 15) + 1 = 9 voxels
+// wide, a cube 15 voxels wide the default 5 (half-width 2), both measured
+// here as the widest span of a cluster's members along any axis, in voxels
+// of the rest lattice; each control particle still belongs to at most 27
+// clusters (3 lattice points per axis), so shape matching costs as much.
+TEST(ThinFeatures, ALongShapeGetsClustersOfAShareOfItsLength) {
+  auto widest = [](const ff::TargetSpec& spec, int* extent, size_t* most_per_particle) {
+    const ff::TargetShape t = ff::buildTarget(spec, 8e-4, 0.01f);
+    const ff::ControlSet s =
+        ff::placeControlParticles(t, ff::Vec3(0, 0, 0), ff::Vec3(0.2f, 0.6f, 0.2f), ff::ShapeMatchParams(),
+                                  ff::Vec3(-1, -1, -1), ff::Vec3(1, 1, 1));
+    const float v = t.grid.voxel;
+    const std::vector<float>* axes[3] = {&s.x0, &s.y0, &s.z0};
+    *extent = 0;
+    for (const std::vector<float>* a : axes) {
+      const auto [mn, mx] = std::minmax_element(a->begin(), a->end());
+      *extent = std::max(*extent, int(std::lround((*mx - *mn) / v)) + 1);
+    }
+    int span = 0;
+    const ff::Clusters& c = s.clusters;
+    for (size_t k = 0; k < c.count(); ++k)
+      for (const std::vector<float>* a : axes) {
+        float lo = 1e30f, hi = -1e30f;
+        for (uint32_t m = c.start[k]; m < c.start[k + 1]; ++m)
+          lo = std::min(lo, (*a)[c.members[m]]), hi = std::max(hi, (*a)[c.members[m]]);
+        span = std::max(span, int(std::lround((hi - lo) / v)) + 1);
+      }
+    *most_per_particle = 0;
+    for (size_t i = 0; i < s.size(); ++i)
+      *most_per_particle = std::max(*most_per_particle, size_t(c.of_start[i + 1] - c.of_start[i]));
+    return span;
+  };
+  ff::TargetSpec bar = fftest::target(ff::TargetKind::Box, 3000);
+  bar.box_size = ff::Vec3(0.12f, 1.0f, 0.12f);
+  const ff::TargetSpec cube = fftest::target(ff::TargetKind::Box, 3000);
+  int bar_extent = 0, cube_extent = 0;
+  size_t bar_most = 0, cube_most = 0;
+  const int bar_span = widest(bar, &bar_extent, &bar_most),
+            cube_span = widest(cube, &cube_extent, &cube_most);
+  std::printf(
+      "  bar %d voxels long: clusters %d voxels wide; cube %d voxels: %d wide; at most %zu and %zu "
+      "clusters per particle\n",
+      bar_extent, bar_span, cube_extent, cube_span, bar_most, cube_most);
+  ASSERT_GE(bar_extent, 45);
+  EXPECT_EQ(bar_span, 2 * int(std::lround(bar_extent / 15.0)) + 1);
+  EXPECT_EQ(cube_span, 5);
+  EXPECT_LE(bar_most, 27u);
+  EXPECT_LE(cube_most, 27u);
+}
+
 // Eq. 5 on a thin plate filled with fluid at rest (a lattice over the plate's
 // voxels): with one radius (3 cm, wider than the plate is thick) the control
 // particles in the plate's middle read it as partly empty, s = 1 - the

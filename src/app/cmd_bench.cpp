@@ -109,7 +109,9 @@ class Bench {
   explicit Bench(const BenchOptions& o) : o_(o) {}
 
   void table1(const std::vector<BenchBackend>& backends) {
-    const std::vector<BenchCase> cases = table1Cases();
+    std::vector<BenchCase> cases = table1Cases();
+    if (!o_.preset.empty())  // the same scenes with this preset's parameters (scenes/water/ for "water")
+      for (BenchCase& c : cases) c.scene.params = presetParams(o_.preset), c.scene.preset = o_.preset;
     std::vector<BenchResult> out;
     for (const BenchCase& c : cases)
       for (const BenchBackend& b : backends) out.push_back(run(c, b, o_.warmup, o_.steps));
@@ -340,7 +342,8 @@ std::function<int()> addBenchCommand(CLI::App& app) {
          "--stability-params", o->stability_options.params,
          "Parameters, comma-separated as GROUP.KEY (default: every control and shape_matching number)")
       ->delimiter(',');
-  cmd->add_option("--preset", o->preset, "Sweep with this preset's parameters instead of the scene's");
+  cmd->add_option("--preset", o->preset,
+                  "--table1 and --stability: this preset's parameters instead of the scenes' own");
   return [o] { return runBench(*o); };
 }
 

@@ -1,5 +1,6 @@
 #include "control/placement.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "control/clusters.h"
@@ -14,6 +15,13 @@ AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float flui
   a.radius = cp.radius;
   a.min_radius = std::fmin(cp.radius, std::fmax(1.5f * voxel, 2.0f * fluid_spacing));
   return a;
+}
+
+ClusterSize clusterSize(const ShapeMatchParams& sm, int extent) {
+  ClusterSize c;
+  c.half_width = std::max(sm.cluster_half_width, int(std::lround(double(extent) / kClusterSpanShare)));
+  c.stride = std::max(1, int(std::lround(double(sm.cluster_stride) * c.half_width / sm.cluster_half_width)));
+  return c;
 }
 
 Standing standingFor(const float gravity[3]) {
@@ -91,7 +99,13 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
         set.radius_scale[p++] =
             std::fmin(adaptive.radius, std::fmax(adaptive.min_radius, t[c])) / adaptive.radius;
   }
-  buildClusters(set, vi, vj, vk, sm.cluster_stride, sm.cluster_half_width, adaptive.on);
+  int extent = 0;  // voxels along the longest axis
+  for (const std::vector<int>* v : {&vi, &vj, &vk}) {
+    const auto [mn, mx] = std::minmax_element(v->begin(), v->end());
+    extent = std::max(extent, *mx - *mn + 1);
+  }
+  const ClusterSize cs = clusterSize(sm, extent);
+  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on);
   return set;
 }
 

@@ -37,6 +37,20 @@ struct AdaptiveControl {
 // above cp.radius.
 AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing);
 
+// The clusters' size for a shape `extent` voxels long along its longest axis
+// (docs/CONTROL_UNITS.md, "Thin features"): half-width at least extent /
+// kClusterSpanShare voxels, never below sm's, with the stride grown in
+// proportion (so a control particle still belongs to as many clusters). A
+// chain of small clusters bends where a long limb hangs from the body (a stick
+// figure's legs: 2.2 cm off its rigid fit at 3 s, iou 0.67); clusters of a
+// fixed share of the shape hold it as the Table 1 shapes are held, whose
+// extents (26-37 voxels) keep the default 2.
+constexpr int kClusterSpanShare = 15;
+struct ClusterSize {
+  int stride = 2, half_width = 2;
+};
+ClusterSize clusterSize(const ShapeMatchParams& sm, int extent);
+
 // Where a shape lower than its region stands (a target change: the region
 // is the fluid of the current shape, which rests on the floor): along `axis`
 // (gravity's, -1: none) on the region's low side (side -1) or high side (+1),

@@ -117,10 +117,18 @@ FF_FN float ff_dfsph_lattice_volume(float spacing, float H) {
 FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, float inv_h, float k,
                                  float* slope) {
   const float c = vol / (spacing * spacing);
+  const float dm = FF_FMAX(d, -0.5f * spacing);
+  /* Out of reach (the nearest layer at H or beyond, so every layer is): no
+   * share and no slope, exactly what the loop below would give. Most
+   * particles are out of reach of most walls; this skips their layers. */
+  if (dm + 0.5f * spacing >= H) {
+    *slope = 0.0f;
+    return 0.0f;
+  }
   const int layers = (int)(H / spacing) + 1;
   float f = 0.0f, s = 0.0f;
   for (int m = 0; m < layers; ++m) {
-    const float z = FF_FMAX(d, -0.5f * spacing) + ((float)m + 0.5f) * spacing;
+    const float z = dm + ((float)m + 0.5f) * spacing;
     if (z < H) {
       f -= ff_cubic_wall_slope(z, inv_h);
       s -= 2.0f * FF_PI * z * ff_cubic(z, inv_h, k);
@@ -196,6 +204,7 @@ FF_FN void ff_dfsph_wall_support(const float* pos, const float* lo, const float*
   for (int a = 0; a < 3; ++a)
     for (int side = 0; side < 2; ++side) {
       const float d = FF_FMAX(side ? hi[a] - pos[a] : pos[a] - lo[a], 0.0f);
+      if (d + 0.5f * spacing >= H) continue; /* no layer in reach: adds 0 */
       float nn = 0.0f, tt = 0.0f;
       for (int l = 0; l < layers; ++l) {
         const float z = d + ((float)l + 0.5f) * spacing;

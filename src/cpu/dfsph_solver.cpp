@@ -121,15 +121,6 @@ FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const NeighbourCache& nc, size_
   for (int q = 0; q < 3; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
 }
 
-// Runs body(gi, b, e) over the lane groups in parallel.
-template <class Body>
-void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
-  forEachGroupIndexFinite(groups, [&](size_t gi, uint32_t b, uint32_t e) {
-    body(gi, b, e);
-    return true;
-  });
-}
-
 using Clock = std::chrono::steady_clock;
 
 // Adds the time since t0 to the stage `name` of `phase`.

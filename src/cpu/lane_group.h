@@ -41,17 +41,24 @@ inline void loadGroup(const FluidState& s, uint32_t b, uint32_t e, float radius,
   grid.rangesNear(lo, hi, radius, spans);
 }
 
-// Runs body(b, e) over the lane groups of `groups` (pairs [b, e), see
-// CpuFluid::groups) in parallel, each group on one thread.
+// Runs body(gi, b, e) over the lane groups of `groups` (pairs [b, e), see
+// CpuFluid::groups; gi: the group's index) in parallel, each group on one
+// thread.
 template <class Body>
-void forEachGroup(const std::vector<uint32_t>& groups, Body&& body) {
+void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
   const long n = long(groups.size() / 2);
 #pragma omp parallel for schedule(dynamic, 16)
-  for (long gi = 0; gi < n; ++gi) body(groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
+  for (long gi = 0; gi < n; ++gi) body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
-// As forEachGroup, with body(gi, b, e) (gi: the group's index) returning
-// whether every value it wrote is finite: true if every call did.
+// As forEachGroupIndex, with body(b, e).
+template <class Body>
+void forEachGroup(const std::vector<uint32_t>& groups, Body&& body) {
+  forEachGroupIndex(groups, [&](size_t, uint32_t b, uint32_t e) { body(b, e); });
+}
+
+// As forEachGroupIndex, with body(gi, b, e) returning whether every value it
+// wrote is finite: true if every call did.
 template <class Body>
 bool forEachGroupIndexFinite(const std::vector<uint32_t>& groups, Body&& body) {
   const long n = long(groups.size() / 2);

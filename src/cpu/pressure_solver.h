@@ -33,8 +33,10 @@ class PressureSolver {
   // The grid phase reordered the particles by `order` (new k = old order[k]).
   virtual void reorder(const std::vector<uint32_t>& order) { (void)order; }
   virtual size_t memoryBytes() const { return 0; }
-  // The neighbour lists of the particles' current order and positions that
-  // the density phase built (null if it built none, or they are stale).
+  // The neighbour lists the density phase built for the particles' current
+  // order (null if it built none, or the grid phase reordered since). The
+  // backend passes them on only while the particles have not moved since
+  // (CpuFluid::sorted).
   virtual const NeighbourCache* neighbours() const { return nullptr; }
   // The state a resumed run needs to stay bit-identical (warm starts); `n`
   // is the fluid's particle count.

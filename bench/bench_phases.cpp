@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<std::string, PhaseCall>> phases = {
       {"grid", [](ff::Backend& b, const ff::Params&) { b.buildGrid(); }},
       {"density", [](ff::Backend& b, const ff::Params&) { b.computeDensity(); }},
-      {"forces", [](ff::Backend& b, const ff::Params&) { b.computeForces(); }},
+      {"forces", [](ff::Backend& b, const ff::Params&) { b.computeForces(0.0f); }},
       {"control_scale", [](ff::Backend& b, const ff::Params&) { b.computeControlScale(); }},
       {"control_forces",
        [](ff::Backend& b, const ff::Params& p) { b.applyControlForces(p.fluid.time_step); }},

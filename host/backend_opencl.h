@@ -45,7 +45,7 @@ class OpenClBackend : public Backend {
 
   void buildGrid() override;
   void computeDensity() override;
-  void computeForces(float dt = 0.0f) override;
+  void computeForces(float dt) override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
   void solvePressure(float dt) override;

@@ -152,7 +152,7 @@ TEST(IndependentChecks, IouOfDisjointFluidIsZero) {
 // The OpenMP backend's steps on particles out of each other's and the walls'
 // reach: gravity only.
 void stepAlone(ff::CpuBackend& cpu, float dt) {
-  cpu.buildGrid(), cpu.computeDensity(), cpu.computeForces(), cpu.solvePressure(dt), cpu.integrate(dt);
+  cpu.buildGrid(), cpu.computeDensity(), cpu.computeForces(0.0f), cpu.solvePressure(dt), cpu.integrate(dt);
 }
 
 // Free fall: the integrator is symplectic Euler (v += g dt, then x += v dt),

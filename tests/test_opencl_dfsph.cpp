@@ -91,7 +91,7 @@ void checkStages(ff::OpenClBackend::KernelVariant variant) {
     std::vector<float> rho, p;
     ocl->readDensity(rho, p);
     expectClose("density", cpu.fluid().rho, rho);
-    cpu.computeForces(), ocl->computeForces();
+    cpu.computeForces(0.0f), ocl->computeForces(0.0f);
     cpu.solvePressure(dt), ocl->solvePressure(dt);
     ASSERT_EQ(cpu.firstNonFinite(), ff::Phase::Count);
     ASSERT_EQ(ocl->firstNonFinite(), ff::Phase::Count);

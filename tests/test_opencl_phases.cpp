@@ -318,7 +318,7 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit =
   }
 
   // The non-pressure accelerations: viscosity + gravity.
-  cpu.computeForces(), ocl.computeForces();
+  cpu.computeForces(0.0f), ocl.computeForces(0.0f);
   ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);
   std::vector<float> ax, ay, az;
   ocl.readAccel(ax, ay, az);
@@ -555,7 +555,7 @@ void checkRecaptureField(ff::OpenClBackend::KernelVariant variant, bool full = f
   const ff::Params& params = p->sim->scene().params;
   const float dt = params.fluid.time_step;
   for (ff::Backend* b : {static_cast<ff::Backend*>(&cpu), static_cast<ff::Backend*>(&ocl)}) {
-    b->buildGrid(), b->computeDensity(), b->computeForces(), b->computeControlScale(),
+    b->buildGrid(), b->computeDensity(), b->computeForces(0.0f), b->computeControlScale(),
         b->applyControlForces(dt);
   }
   ASSERT_EQ(ocl.firstNonFinite(), ff::Phase::Count);

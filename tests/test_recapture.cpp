@@ -173,7 +173,7 @@ TEST(Recapture, FluidOutOfReachIsDrawnInWhileTheShapeReadsFull) {
   auto& cpu = static_cast<ff::CpuBackend&>(sim.backend());
   const ff::Params& p = sim.scene().params;
   const float dt = p.fluid.time_step;
-  cpu.buildGrid(), cpu.computeDensity(), cpu.computeForces();
+  cpu.buildGrid(), cpu.computeDensity(), cpu.computeForces(0.0f);
   const ff::FluidState& s = cpu.fluid().s;
   const std::vector<float> ax0 = cpu.fluid().ax, ay0 = cpu.fluid().ay, az0 = cpu.fluid().az;
   cpu.computeControlScale(), cpu.applyControlForces(dt);

@@ -28,7 +28,7 @@ class CpuBackend : public Backend {
 
   void buildGrid() override;
   void computeDensity() override;
-  void computeForces(float dt = 0.0f) override;
+  void computeForces(float dt) override;
   void computeControlScale() override;
   void applyControlForces(float dt) override;
   void solvePressure(float dt) override;

@@ -53,10 +53,11 @@ class Backend {
   // (src/cpu/forces/cpu_forces.cpp, host/forces/cl_forces.cpp): gravity,
   // viscosity, control. computeForces sets a = 0, then every force of phase
   // Forces adds its acceleration over a substep of dt (0: the accelerations
-  // only, as the phase tests ask) in the list's order; computeControlScale
+  // only, as the phase tests ask; no default, since a default argument on a
+  // virtual function binds by the static type) in the list's order; computeControlScale
   // and applyControlForces run the preparation (the control's density scale)
   // and then the accelerations of the forces of phase ControlForces (the control).
-  virtual void computeForces(float dt = 0.0f) = 0;
+  virtual void computeForces(float dt) = 0;
   virtual void computeControlScale() = 0;
   virtual void applyControlForces(float dt) = 0;
   // The registered non-pressure forces' names, in the order they run.

@@ -296,6 +296,42 @@ FF_FN float ff_dfsph_pressure(float kd, float kv, float inv_dt, float rho0) {
   return rho0 * (kd * inv_dt + kv) * inv_dt;
 }
 
+/* ---- The pressure the pressure force reads (a readout, not part of a
+ * step; src/metrics/force_pressure.cpp, docs/PRESETS.md). ----
+ *
+ * du_i = 2 V sum_j g_ij kbar_ij r_ij - k_i grad S_i with kbar_ij = (k_i + k_j)
+ * / 2: the fluid's part of the force reads k (and p = rho0 (kd / dt^2 +
+ * kv / dt), linear in k) only through the pairs' means. For a field linear
+ * along a unit direction n, kbar_ij = k_i - (b / 2) r_ij.n and
+ * n.du_i = 2 V k_i sum_j g r_ij.n - b V sum_j g (r_ij.n)^2: the gradient is
+ * read with the pair weights g (r_ij.n)^2. So the pressure that the force
+ * along n reads at particle i is the mean of its pairs' means with these
+ * weights, located at their midpoints' mean with the same weights:
+ *   p_n,i = (p_i + sum_j w_ij p_j / sum_j w_ij) / 2,
+ *   x_n,i = (x_i.n + sum_j w_ij x_j.n / sum_j w_ij) / 2,  w_ij = g_ij (r_ij.n)^2.
+ * A k that alternates layer by layer along n has the same mean over every
+ * pair of adjacent layers and is not read (pairs in one layer have w = 0,
+ * pairs two layers apart are at H or beyond), as the force does not feel
+ * it. Exact for a linear field. The walls' term (the particle's own k) is
+ * not a pair and is left out: the readout is the fluid's. */
+
+/* The weight of pair ij along n: g (r_ij.n)^2, rn = r_ij.n. */
+FF_FN float ff_dfsph_readout_weight(float g, float rn) {
+  return g * rn * rn;
+}
+
+/* p_n,i from p_i, x_i.n and the pair sums w = sum_j w_ij, wp = sum_j w_ij p_j,
+ * wx = sum_j w_ij x_j.n; sets *at = x_n,i. A particle without pairs along n
+ * (w = 0) reads its own p at its own place. */
+FF_FN float ff_dfsph_force_pressure(float p, float xn, float w, float wp, float wx, float* at) {
+  if (!(w > 0.0f)) {
+    *at = xn;
+    return p;
+  }
+  *at = 0.5f * (xn + wx / w);
+  return 0.5f * (p + wp / w);
+}
+
 /* The scalars every DFSPH kernel takes, in one struct of 4-byte fields (C++
  * and OpenCL C lay it out alike). */
 typedef struct {

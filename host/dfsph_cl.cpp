@@ -111,9 +111,9 @@ void ClDfsphSolver::sources(const ClFluidRefs& f, bool density, float dt, bool g
          cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(), args_, ux_.get(), uy_.get(), uz_.get(),
          wgx_.get(), wgy_.get(), wgz_.get(), rate_buf_.get(), state_.get(), cl_int(gated));
   const size_t local = source_.pow2_local, groups = sourceGroups(f.n, local);
-  launchGroups(*f.queue, source_, groups, local, rate_buf_.get(), *f.rho, bulk_.get(), cl_uint(f.n),
-               cl_int(density), 1.0f / rho0_, dt, b_.get(), partial_.get(), cl::Local(local * sizeof(double)),
-               state_.get(), cl_int(gated));
+  launchGroups(*f.queue, source_, groups, local, rate_buf_.get(), *f.rho, bulk_.get(), *f.x, *f.y, *f.z,
+               ux_.get(), uy_.get(), uz_.get(), args_, cl_uint(f.n), cl_int(density), 1.0f / rho0_, dt,
+               b_.get(), partial_.get(), cl::Local(local * sizeof(double)), state_.get(), cl_int(gated));
 }
 
 void ClDfsphSolver::applyVelocityChange(const ClFluidRefs& f, const DeviceBuffer& k, float scale,

@@ -23,18 +23,28 @@ typedef float dfsph_sum_t;
 #endif
 
 // b = the compression the velocities still cause (density: after dt, from
-// rho; else the divergence where the support is filled), and the sum of b
+// rho and the walls' share at x + dt u; else the divergence where the
+// support is filled), and the sum of b
 // per work-group into partial[group] (local size a power of two, at most
 // 8 bytes of local memory per work-item).
 __kernel void dfsph_source(__global const float* rate, __global const float* rho, __global const uchar* bulk,
-                           uint n, int density, float inv_rho0, float dt, __global float* b,
+                           __global const float* x, __global const float* y, __global const float* z,
+                           __global const float* ux, __global const float* uy, __global const float* uz,
+                           FfDfsphArgs P, uint n, int density, float inv_rho0, float dt, __global float* b,
                            __global dfsph_sum_t* partial, __local dfsph_sum_t* tmp, __global const int* state,
                            int gated) {
   if (gated && state[0]) return;  // the same for every work-item: no barrier is skipped by some only
   dfsph_sum_t sum = 0.0f;
   for (uint i = get_global_id(0); i < n; i += get_global_size(0)) {
-    const float bi = density ? ff_dfsph_density_source(rho[i] * inv_rho0, rate[i], dt)
-                             : ff_dfsph_divergence_source(rate[i], bulk[i]);
+    float bi;
+    if (density) {
+      const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]},
+                  lo[3] = {P.lo[0], P.lo[1], P.lo[2]}, hi[3] = {P.hi[0], P.hi[1], P.hi[2]};
+      const float rem = ff_dfsph_wall_remainder(pos, u, dt, lo, hi, P.spacing, P.vol, P.h, P.inv_h);
+      bi = ff_dfsph_density_source(rho[i] * inv_rho0 + rem, rate[i], dt);
+    } else {
+      bi = ff_dfsph_divergence_source(rate[i], bulk[i]);
+    }
     b[i] = bi;
     sum += (dfsph_sum_t)bi;
   }

@@ -183,14 +183,22 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   const long n = long(f.size());
   const float inv_rho0 = 1.0f / rho0_;
   const float *vx = ux_.data(), *vy = uy_.data(), *vz = uz_.data();
+  const FluidState& s = f.s;
+  const float H = vol_h_, inv_h = 1.0f / H;
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float rs[8];
     rateSums(f, cache_, gi, vx, vy, vz, b, e, rs);
     for (uint32_t i = b; i < e; ++i) {
       const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
       const float rate = ff_dfsph_rate(rs[i - b], vol_, u, wg);
-      b_[i] = density ? ff_dfsph_density_source(f.rho[i] * inv_rho0, rate, dt)
-                      : ff_dfsph_divergence_source(rate, bulk_[i]);
+      if (density) {
+        // The density after dt, with the walls' share at x + dt u.
+        const float pos[3] = {s.x[i], s.y[i], s.z[i]};
+        const float rem = ff_dfsph_wall_remainder(pos, u, dt, lo_, hi_, vol_spacing_, vol_, H, inv_h);
+        b_[i] = ff_dfsph_density_source(f.rho[i] * inv_rho0 + rem, rate, dt);
+      } else {
+        b_[i] = ff_dfsph_divergence_source(rate, bulk_[i]);
+      }
       inc_[i] = ff_dfsph_increment(b_[i], alpha_[i]);  // the next iteration's, if there is one
     }
   });
@@ -253,6 +261,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   FluidState& s = f.s;
   for (auto* a : {&b_, &inc_}) a->resize(size_t(n));
   rho0_ = p.rest_density;
+  box(c, lo_, hi_);
   ux_ = s.vx, uy_ = s.vy, uz_ = s.vz;
   // k scales as the pressure times dt^2 (density) or dt (divergence).
   const float ratio = last_dt_ > 0.0f ? dt / last_dt_ : 1.0f;

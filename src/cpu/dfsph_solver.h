@@ -56,6 +56,7 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;
   float last_dt_ = 0.0f, rho0_ = 1.0f;
+  float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};  // the container of this substep
 };
 
 }  // namespace ff

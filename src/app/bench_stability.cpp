@@ -23,16 +23,19 @@ std::string shortName(const ParamInfo& p) {
 // The parameters the sweep scales: the numbers of the control and
 // shape-matching groups that act with the scene's parameters (not the force
 // units or the normalise switch, choices of formulation; with normalise on,
-// attraction_g and velocity_rate instead of attraction and velocity).
+// attraction_g and velocity_rate instead of attraction and velocity; with
+// radius_spacings on, it instead of the radius it sets).
 std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names, const Params& params) {
   std::vector<const ParamInfo*> out;
   const bool normalised = params.control.normalise != 0;
   for (const ParamInfo& p : paramTable()) {
     const std::string g = p.group, k = p.key;
     const bool number = p.type == ParamInfo::Type::Real || p.type == ParamInfo::Type::Integer;
+    const bool in_spacings = params.control.radius_spacings > 0.0f;
     const bool inactive = k == "normalise" ||
                           (g == "control" && normalised && (k == "attraction" || k == "velocity")) ||
-                          (!normalised && (k == "attraction_g" || k == "velocity_rate"));
+                          (!normalised && (k == "attraction_g" || k == "velocity_rate")) ||
+                          (g == "control" && k == (in_spacings ? "radius" : "radius_spacings"));
     if (names.empty() && number && !inactive && (g == "control" || g == "shape_matching")) out.push_back(&p);
   }
   for (const std::string& n : names) {

@@ -79,6 +79,10 @@ const std::vector<ParamInfo>& paramTable() {
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
        FF_FIELD(control.radius)},
+      {"control", "radius_spacings", T::Real, 0.0, 100.0, false,
+       "> 0: the radius in control particle spacings (the target's voxel), set at every target; "
+       "0: radius in metres",
+       FF_FIELD(control.radius_spacings)},
       {"control", "attraction", T::Real, 0.0, 1e6, false, "w_a, weight of the attraction force (eq. 4)",
        FF_FIELD(control.attraction)},
       {"control", "velocity", T::Real, 0.0, 1e6, false, "w_v, weight of the velocity force (eq. 6)",

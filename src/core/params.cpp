@@ -91,6 +91,14 @@ Params waterParams() {
   f.cfl = 0.1f;            // a fifth of a spacing per substep at the largest speed (docs/PRESETS.md)
   f.max_substep = 0.002f;  // docs/PRESETS.md: 4 ms substeps make a resting column bounce
   f.viscosity = 0.1f;      // docs/PRESETS.md: damps the settling of the cubic lattice
+  // The pull that does not depend on the control particles' density
+  // (docs/CONTROL_UNITS.md, "Normalised pull"); the paper preset keeps eq. 4
+  // and 6 raw and the radius in metres.
+  p.control.normalise = 1;
+  // The radius scales with the scene: 3.06 control spacings is the paper's
+  // 0.03 m at the bunny's 3197 control particles (9.8 mm apart), and 0.0299 m
+  // at the default voxel of 1.55 fluid spacings.
+  p.control.radius_spacings = 3.06f;
   return p;
 }
 

@@ -61,7 +61,14 @@ struct FluidParams {
 };
 
 struct ControlParams {
-  float radius = 0.03f;         // influence radius of a control particle
+  float radius = 0.03f;  // influence radius of a control particle
+  // The radius in control particle spacings (the target's voxel): > 0 sets
+  // `radius` to radius_spacings voxels at every target, so that it scales
+  // with the scene and not with the fluid's particle count (docs/CONTROL_UNITS.md,
+  // "Radius in control spacings"); 0 = `radius` in metres, as the paper.
+  float radius_spacings = 0.0f;
+  // The radius for control particles `voxel` apart.
+  float radiusFor(float voxel) const { return radius_spacings > 0.0f ? radius_spacings * voxel : radius; }
   float attraction = 0.00008f;  // w_a
   float velocity = 0.00005f;    // w_v
   float feedback = 0.02f;       // fluid feedback coefficient

@@ -84,6 +84,8 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
   if (has_target_) {
     target_spec_ = readTargetState(r);
     target_ = &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid));
+    scene_.params = withControlRadius(scene_.params, target_->grid.voxel);
+    backend_->setParams(scene_.params);
   }
   backend_->loadState(r);
   backend_->setMetricsTarget(target_);
@@ -283,10 +285,15 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   checkClusterMemory(scene_.params.shape, shape.reference.size(), scene_.source);
   // Placed before any state changes: if placement throws, the simulation and
   // the backend keep the previous target, which the cache still holds.
+  const Params params = withControlRadius(scene_.params, shape.grid.voxel);
   ControlSet placed =
-      placeControlParticles(shape, lo, hi, scene_.params.shape, scene_.container.min, scene_.container.max,
-                            adaptiveControl(scene_.params.control, shape.grid.voxel, fp.restSpacing()),
+      placeControlParticles(shape, lo, hi, params.shape, scene_.container.min, scene_.container.max,
+                            adaptiveControl(params.control, shape.grid.voxel, fp.restSpacing()),
                             target_ ? standingFor(fp.gravity) : Standing());
+  if (params.control.radius != scene_.params.control.radius) {
+    scene_.params = params;
+    backend_->setParams(scene_.params);
+  }
   target_ = &shape;
   target_volume_ = volume;
   target_spec_ = spec;
@@ -320,8 +327,13 @@ void Simulation::setRegion(const RegionDesc& region) {
 void Simulation::setParams(const Params& params) {
   validateParams(params, "parameters");
   if (target_) checkClusterMemory(params.shape, target_->reference.size(), "parameters");
-  scene_.params = params;
-  backend_->setParams(params);
+  scene_.params = withControlRadius(params, target_ ? target_->grid.voxel : 0.0f);
+  backend_->setParams(scene_.params);
+}
+
+Params Simulation::withControlRadius(Params params, float voxel) {
+  if (voxel > 0.0f) params.control.radius = params.control.radiusFor(voxel);
+  return params;
 }
 
 }  // namespace ff

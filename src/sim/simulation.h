@@ -81,6 +81,9 @@ class Simulation {
  private:
   // setTarget; with `reselect`, the controlled fluid is chosen again from the region.
   void makeTarget(const TargetSpec& spec, bool reselect);
+  // params with the control radius of control particles `voxel` apart
+  // (ControlParams::radiusFor); params as they are for voxel 0 (no target).
+  static Params withControlRadius(Params params, float voxel);
   void applySchedule();
   template <class F>
   void timed(Phase p, F&& f);

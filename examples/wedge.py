@@ -3,7 +3,7 @@
 with a table of the metrics each run reached.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/wedge.py \
-        --param control.attraction --values 0.00004,0.00008,0.00016 --seconds 2 --out wedge.csv
+        --param control.attraction_g --values 4.35,8.7,17.4 --seconds 2 --out wedge.csv
 
 Each row: the value, then the final iou and coverage, the mean iou over the
 last quarter of the run, the highest max_speed and the mean density_error.
@@ -27,8 +27,8 @@ def params_overlay(path, value):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", default=None, help="scene file (default: the built-in default scene)")
-    ap.add_argument("--param", default="control.attraction", help="a key of the scene's params, e.g. fluid.viscosity")
-    ap.add_argument("--values", default="0.00004,0.00008,0.00016", help="comma-separated values")
+    ap.add_argument("--param", default="control.attraction_g", help="a key of the scene's params, e.g. fluid.viscosity")
+    ap.add_argument("--values", default="4.35,8.7,17.4", help="comma-separated values")
     ap.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per run")
     ap.add_argument("--steps", type=int, default=0, help="steps per run instead of --seconds")
     ap.add_argument("--backend", default="cpu")

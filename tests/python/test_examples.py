@@ -27,16 +27,16 @@ def check(cond, what):
 
 def wedge(src, module_dir, tmp):
     run(os.path.join(src, "examples", "wedge.py"),
-        ["--param", "control.attraction", "--values", "0.00004,0.00016", "--steps", "4", "--threads", "2",
+        ["--param", "control.attraction_g", "--values", "4.35,17.4", "--steps", "4", "--threads", "2",
          "--out", "w.csv"], tmp, module_dir)
     rows = list(csv.reader(open(os.path.join(tmp, "w.csv"))))
-    check(rows[0][:3] == ["control.attraction", "final_iou", "final_coverage"], "header %s" % rows[0])
+    check(rows[0][:3] == ["control.attraction_g", "final_iou", "final_coverage"], "header %s" % rows[0])
     check(len(rows) == 3, "one row per value, got %d" % (len(rows) - 1))
-    check([float(r[0]) for r in rows[1:]] == [0.00004, 0.00016], "values column %s" % rows[1:])
+    check([float(r[0]) for r in rows[1:]] == [4.35, 17.4], "values column %s" % rows[1:])
     for r in rows[1:]:
         check(0.0 <= float(r[1]) <= 1.0, "iou in [0, 1]: %s" % r)
         check(abs(float(r[-1]) - 4 * 0.004) < 1e-6, "4 steps of 0.004 s: %s" % r)
-    # Different attraction, different run: the wedge really changed the parameter.
+    # Different attraction (the default preset pulls normalised: attraction_g), different run: the wedge really changed the parameter.
     check(rows[1][1:-1] != rows[2][1:-1], "both runs gave the same metrics")
 
 

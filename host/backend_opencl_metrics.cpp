@@ -8,6 +8,7 @@
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
 #include "host/dfsph_cl.h"
+#include "metrics/pose.h"
 
 namespace ff {
 
@@ -133,6 +134,8 @@ StepMetrics OpenClBackend::computeMetrics() {
       sh.stray += long(d.partial_uint[4 * k + 2]), sh.far += long(d.partial_uint[4 * k + 3]);
     }
     setShapeMetrics(m, counts, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
+    const ShapePose pose = shapePose(*target_, frame_, params_.fluid.gravity, box_.min, box_.max);
+    m.tilt = pose.tilt, m.base_height = pose.base_height;
     return m;
   });
 }

@@ -210,22 +210,75 @@ TEST(ThinFeatures, ALongShapeGetsClustersOfAShareOfItsLength) {
       *most_per_particle = std::max(*most_per_particle, size_t(c.of_start[i + 1] - c.of_start[i]));
     return span;
   };
+  // A bar about 5.6 voxels thick (its ridge 5 thick, a limb: one default
+  // cluster across it) and one about 7.8 thick (ridge 7: two clusters across,
+  // as a letter's strokes), both longer than 37 voxels, and a cube.
   ff::TargetSpec bar = fftest::target(ff::TargetKind::Box, 3000);
-  bar.box_size = ff::Vec3(0.12f, 1.0f, 0.12f);
+  bar.box_size = ff::Vec3(0.06f, 1.0f, 0.06f);
+  ff::TargetSpec stroke = fftest::target(ff::TargetKind::Box, 3000);
+  stroke.box_size = ff::Vec3(0.16f, 1.0f, 0.16f);
   const ff::TargetSpec cube = fftest::target(ff::TargetKind::Box, 3000);
-  int bar_extent = 0, cube_extent = 0;
-  size_t bar_most = 0, cube_most = 0;
+  int bar_extent = 0, stroke_extent = 0, cube_extent = 0;
+  size_t bar_most = 0, stroke_most = 0, cube_most = 0;
   const int bar_span = widest(bar, &bar_extent, &bar_most),
+            stroke_span = widest(stroke, &stroke_extent, &stroke_most),
             cube_span = widest(cube, &cube_extent, &cube_most);
   std::printf(
-      "  bar %d voxels long: clusters %d voxels wide; cube %d voxels: %d wide; at most %zu and %zu "
-      "clusters per particle\n",
-      bar_extent, bar_span, cube_extent, cube_span, bar_most, cube_most);
+      "  bar %d voxels long: clusters %d voxels wide; thick bar %d: %d wide; cube %d voxels: %d wide; at "
+      "most %zu, %zu and %zu clusters per particle\n",
+      bar_extent, bar_span, stroke_extent, stroke_span, cube_extent, cube_span, bar_most, stroke_most,
+      cube_most);
   ASSERT_GE(bar_extent, 45);
+  ASSERT_GE(stroke_extent, 45);
   EXPECT_EQ(bar_span, 2 * int(std::lround(bar_extent / 15.0)) + 1);
+  EXPECT_EQ(stroke_span, 5);
   EXPECT_EQ(cube_span, 5);
   EXPECT_LE(bar_most, 27u);
   EXPECT_LE(cube_most, 27u);
+}
+
+// thinRidgeVoxels on voxel shapes of known thickness: a bar 4 x 4 voxels
+// across and 40 long has its ridge in its 2 x 2 middle voxels, 2 deep (3
+// thick), all along it but its last voxel at each end (1 deep), so 4 per
+// voxel of length over 38; a bar 8 x 8 across (ridge 4 deep: 7 thick) and
+// a T of two such strokes have none, although the voxels along their edges
+// are thin (3, localThickness): they lie off the ridge; two balls 15 voxels
+// wide joined by a bar 3 across have the bar's middle line, at least its
+// length between the balls less a ball's radius at each end.
+TEST(ThinFeatures, TheRidgeTellsLimbsFromStrokes) {
+  auto grid = [](int n, auto inside) {
+    ff::VoxelGrid g = emptyGrid(n, n, n, 0.01f);
+    for (int k = 1; k < n - 1; ++k)
+      for (int j = 1; j < n - 1; ++j)
+        for (int i = 1; i < n - 1; ++i) g.inside[g.index(i, j, k)] = inside(i, j, k) ? 1 : 0;
+    return g;
+  };
+  auto in = [](int v, int lo, int n) { return v >= lo && v < lo + n; };
+  const ff::VoxelGrid limb =
+      grid(50, [&](int i, int j, int k) { return in(i, 20, 4) && in(k, 20, 4) && in(j, 5, 40); });
+  const ff::VoxelGrid stroke =
+      grid(50, [&](int i, int j, int k) { return in(i, 20, 8) && in(k, 20, 8) && in(j, 5, 40); });
+  const ff::VoxelGrid letter = grid(50, [&](int i, int j, int k) {
+    return in(k, 20, 8) && ((in(i, 20, 8) && in(j, 5, 40)) || (in(i, 4, 40) && in(j, 37, 8)));
+  });
+  const ff::VoxelGrid dumbbell = grid(70, [&](int i, int j, int k) {
+    auto ball = [&](int cx) {
+      const float dx = float(i) + 0.5f - float(cx), dy = float(j) - 29.5f, dz = float(k) - 29.5f;
+      return dx * dx + dy * dy + dz * dz <= 7.5f * 7.5f;
+    };
+    return ball(12) || ball(58) || (in(j, 28, 3) && in(k, 28, 3) && in(i, 12, 46));
+  });
+  const long n_limb = ff::thinRidgeVoxels(limb, 5.0f), n_stroke = ff::thinRidgeVoxels(stroke, 5.0f),
+             n_letter = ff::thinRidgeVoxels(letter, 5.0f), n_dumbbell = ff::thinRidgeVoxels(dumbbell, 5.0f);
+  std::printf("  thin ridge voxels: limb %ld, stroke %ld, letter %ld, dumbbell %ld\n", n_limb, n_stroke,
+              n_letter, n_dumbbell);
+  EXPECT_EQ(n_limb, 4 * 38);
+  EXPECT_EQ(n_stroke, 0);
+  EXPECT_EQ(n_letter, 0);
+  EXPECT_GE(n_dumbbell, 46 - 2 * 15);
+  // The edges are thin: the count is not one of thin voxels.
+  const std::vector<float> t = ff::localThickness(stroke, 1.0f);
+  EXPECT_NEAR(t[stroke.index(20, 20, 20)] / stroke.voxel, 3.0f, 1e-4f);
 }
 
 // Eq. 5 on a thin plate filled with fluid at rest (a lattice over the plate's

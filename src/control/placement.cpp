@@ -17,9 +17,10 @@ AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float flui
   return a;
 }
 
-ClusterSize clusterSize(const ShapeMatchParams& sm, int extent) {
+ClusterSize clusterSize(const ShapeMatchParams& sm, int extent, bool limbs) {
   ClusterSize c;
-  c.half_width = std::max(sm.cluster_half_width, int(std::lround(double(extent) / kClusterSpanShare)));
+  c.half_width = sm.cluster_half_width;
+  if (limbs) c.half_width = std::max(c.half_width, int(std::lround(double(extent) / kClusterSpanShare)));
   c.stride = std::max(1, int(std::lround(double(sm.cluster_stride) * c.half_width / sm.cluster_half_width)));
   return c;
 }
@@ -104,7 +105,9 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     const auto [mn, mx] = std::minmax_element(v->begin(), v->end());
     extent = std::max(extent, *mx - *mn + 1);
   }
-  const ClusterSize cs = clusterSize(sm, extent);
+  const bool limbs = std::lround(double(extent) / kClusterSpanShare) > sm.cluster_half_width &&
+                     thinRidgeVoxels(g, float(2 * sm.cluster_half_width + 1)) * kLimbLengthShare >= extent;
+  const ClusterSize cs = clusterSize(sm, extent, limbs);
   buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on);
   return set;
 }

@@ -38,18 +38,25 @@ struct AdaptiveControl {
 AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing);
 
 // The clusters' size for a shape `extent` voxels long along its longest axis
-// (docs/CONTROL_UNITS.md, "Thin features"): half-width at least extent /
+// (docs/CONTROL_UNITS.md, "Thin features"). A shape with `limbs` (a medial
+// ridge no thicker than a cluster of sm's is wide, at least 1 /
+// kLimbLengthShare of the shape's length: thinRidgeVoxels) gets clusters of half-width at least extent /
 // kClusterSpanShare voxels, never below sm's, with the stride grown in
-// proportion (so a control particle still belongs to as many clusters). A
-// chain of small clusters bends where a long limb hangs from the body (a stick
-// figure's legs: 2.2 cm off its rigid fit at 3 s, iou 0.67); clusters of a
-// fixed share of the shape hold it as the Table 1 shapes are held, whose
-// extents (26-37 voxels) keep the default 2.
+// proportion (so a control particle still belongs to as many clusters).
+// Across such a limb there is one cluster, and a chain of small clusters
+// bends where a long limb hangs from the body (a stick figure's legs: 2.2 cm
+// off its rigid fit at 3 s, iou 0.67); clusters of a fixed share of the shape
+// hold it. Where several clusters lie side by side across a part (a letter's
+// strokes, 8 voxels thick) they hold it already, and larger ones only slow
+// its forming (the letter T: 0.921 -> 0.819 at 3 s on water): a shape
+// without limbs, or up to 37 voxels long (the Table 1 shapes, 26-37), keeps
+// sm's size.
 constexpr int kClusterSpanShare = 15;
+constexpr int kLimbLengthShare = 8;
 struct ClusterSize {
   int stride = 2, half_width = 2;
 };
-ClusterSize clusterSize(const ShapeMatchParams& sm, int extent);
+ClusterSize clusterSize(const ShapeMatchParams& sm, int extent, bool limbs);
 
 // Where a shape lower than its region stands (a target change: the region
 // is the fluid of the current shape, which rests on the floor): along `axis`

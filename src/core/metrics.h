@@ -30,15 +30,19 @@ struct StepMetrics {
   // what an incompressible solver bounds (the free surface's deficit, which
   // density_error also counts, is not an error of the solve).
   double compression = 0.0;
+  // How the formed shape stands at the best rigid fit (metrics/pose.h).
+  double tilt = 0.0;         // degrees from upright
+  double base_height = 0.0;  // m, its lowest point above the floor
 };
 
 // The metrics as a table row: the column names (the CSV header of
 // `flowform run --metrics`, the keys of the Python module's arrays) and the
 // values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 18> kMetricColumns = {
+inline constexpr std::array<const char*, 20> kMetricColumns = {
     "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
     "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps",   "compression"};
+    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps",   "compression",
+    "tilt",           "base_height"};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),
@@ -58,7 +62,9 @@ inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics&
           m.captured,
           m.stray,
           double(m.velocity_clamps),
-          m.compression};
+          m.compression,
+          m.tilt,
+          m.base_height};
 }
 
 }  // namespace ff

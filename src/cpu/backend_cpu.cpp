@@ -9,6 +9,7 @@
 #include "control/shape_matching.h"
 #include "cpu/forces/cpu_forces.h"
 #include "metrics/fluid_shares.h"
+#include "metrics/pose.h"
 #include "parallel/parallel_grain.h"
 
 namespace ff {
@@ -207,6 +208,8 @@ StepMetrics CpuBackend::computeMetrics() {
                       controlled_by_id_.empty() ? nullptr : controlled_by_id_.data(),
                       reached.size() == size_t(n) ? reached.data() : nullptr);
       setShapeMetrics(m, c, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
+      const ShapePose pose = shapePose(*target_, frame_, params_.fluid.gravity, box_.min, box_.max);
+      m.tilt = pose.tilt, m.base_height = pose.base_height;
     }
   }
   return m;

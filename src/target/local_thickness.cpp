@@ -89,3 +89,25 @@ std::vector<float> localThickness(const VoxelGrid& g, float cap) {
 }
 
 }  // namespace ff
+
+namespace ff {
+
+long thinRidgeVoxels(const VoxelGrid& g, float thickness) {
+  const std::vector<float> d2 = squaredDistanceToOutside(g);
+  long thin = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const float d = d2[g.index(i, j, k)];
+        if (d < 2.0f) continue;
+        bool top = true;
+        for (int c = std::max(0, k - 1); top && c <= std::min(g.nz - 1, k + 1); ++c)
+          for (int b = std::max(0, j - 1); top && b <= std::min(g.ny - 1, j + 1); ++b)
+            for (int a = std::max(0, i - 1); top && a <= std::min(g.nx - 1, i + 1); ++a)
+              top = d2[g.index(a, b, c)] <= d;
+        if (top && 2.0f * std::sqrt(d) - 1.0f <= thickness) ++thin;
+      }
+  return thin;
+}
+
+}  // namespace ff

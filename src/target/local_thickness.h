@@ -27,3 +27,18 @@ std::vector<float> squaredDistanceToOutside(const VoxelGrid& g);
 std::vector<float> localThickness(const VoxelGrid& g, float cap);
 
 }  // namespace ff
+
+namespace ff {
+
+// How many voxels of the shape's medial ridge are at most `thickness` voxels
+// thick: of the inside voxels at least sqrt(2) voxels deep whose squared
+// distance to the outside is at least each of their 26 neighbours' (the
+// centre lines and sheets of limbs, bars and plates, where the largest
+// inside balls sit), those whose ball is at most that thick (2 sqrt(d2) - 1,
+// as localThickness). A limb k voxels across adds about one to four voxels
+// per voxel of its length; a thick letter's strokes add none, nor do the
+// thin rims every box-like shape has along its edges (they lie off the
+// ridge), nor single voxels standing out of a staircase surface (1 deep).
+long thinRidgeVoxels(const VoxelGrid& g, float thickness);
+
+}  // namespace ff

@@ -88,10 +88,6 @@ std::vector<float> localThickness(const VoxelGrid& g, float cap) {
   return t;
 }
 
-}  // namespace ff
-
-namespace ff {
-
 long thinRidgeVoxels(const VoxelGrid& g, float thickness) {
   const std::vector<float> d2 = squaredDistanceToOutside(g);
   long thin = 0;

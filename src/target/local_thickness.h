@@ -26,10 +26,6 @@ std::vector<float> squaredDistanceToOutside(const VoxelGrid& g);
 // the voxels times (2 cap / voxel)^3.
 std::vector<float> localThickness(const VoxelGrid& g, float cap);
 
-}  // namespace ff
-
-namespace ff {
-
 // How many voxels of the shape's medial ridge are at most `thickness` voxels
 // thick: of the inside voxels at least sqrt(2) voxels deep whose squared
 // distance to the outside is at least each of their 26 neighbours' (the

@@ -199,7 +199,8 @@ TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
 
 // --stability: the unscaled run and one per parameter and factor, each
 // parameter scaled from the preset's value (the paper's w_a = 0.00008,
-// alpha = 0.3) and kept in its range (alpha x4 = 1.2 is clipped to 1).
+// alpha = 0.3) and kept in its range (alpha x4 = 1.2 is clipped to 1); an
+// on/off parameter (adaptive, 0 in the paper preset) runs once, switched on.
 TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
   const fftest::TempDir d("bench_stability");
   const fs::path scene = d / "s.json";
@@ -207,8 +208,10 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
                                                  "\"preset\": \"paper\", \"target\": \"sphere\"");
   auto r = runFlowform("bench --stability --backend cpu --threads 2 --stability-scene '" + scene.string() +
                        "' --stability-seconds 0.02 --stability-factors 0.5,4 "
-                       "--stability-params control.attraction,shape_matching.stiffness");
+                       "--stability-params control.attraction,shape_matching.stiffness,control.adaptive");
   ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("| control.adaptive | switched | 1 | stable |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("| control.adaptive | 0.5 |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| (none) | 1 | - | stable |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| control.attraction | 0.5 | 4e-05 | stable |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| control.attraction | 4 | 0.00032 | stable |"), std::string::npos) << r.out;

@@ -20,11 +20,18 @@ std::string shortName(const ParamInfo& p) {
   return std::string(p.group) + "." + p.key;
 }
 
+// An on/off parameter (normalise, adaptive): scaling 0 or 1 by a factor says
+// nothing, so the sweep runs it once, switched the other way.
+bool isSwitch(const ParamInfo& p) {
+  return p.type == ParamInfo::Type::Integer && p.min == 0.0 && p.max == 1.0;
+}
+
 // The parameters the sweep scales: the numbers of the control and
 // shape-matching groups that act with the scene's parameters (not the force
-// units or the normalise switch, choices of formulation; with normalise on,
-// attraction_g and velocity_rate instead of attraction and velocity; with
-// radius_spacings on, it instead of the radius it sets).
+// units, a choice of units; with normalise on, attraction_g and velocity_rate
+// instead of attraction and velocity; with radius_spacings on, it instead of
+// the radius it sets), and the switches (normalise, adaptive), each run once
+// switched.
 std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names, const Params& params) {
   std::vector<const ParamInfo*> out;
   const bool normalised = params.control.normalise != 0;
@@ -32,8 +39,7 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
     const std::string g = p.group, k = p.key;
     const bool number = p.type == ParamInfo::Type::Real || p.type == ParamInfo::Type::Integer;
     const bool in_spacings = params.control.radius_spacings > 0.0f;
-    const bool inactive = k == "normalise" ||
-                          (g == "control" && normalised && (k == "attraction" || k == "velocity")) ||
+    const bool inactive = (g == "control" && normalised && (k == "attraction" || k == "velocity")) ||
                           (!normalised && (k == "attraction_g" || k == "velocity_rate")) ||
                           (g == "control" && k == (in_spacings ? "radius" : "radius_spacings"));
     if (names.empty() && number && !inactive && (g == "control" || g == "shape_matching")) out.push_back(&p);
@@ -70,6 +76,13 @@ double setScaled(const ParamInfo& p, Params& params, double base, double factor,
   else
     *static_cast<float*>(f) = float(v);
   return v;
+}
+
+// The factor as printed: "0.25" (after `prefix`), or "switched" for an on/off parameter.
+std::string factor(const StabilityRun& r, const char* prefix = "") {
+  char f[32] = "switched";
+  if (!r.switched) std::snprintf(f, sizeof f, "%s%g", prefix, r.factor);
+  return f;
 }
 
 StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double seconds, double explode_speed) {
@@ -120,21 +133,23 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   const double vx = explosionSpeed(scene);
   std::vector<StabilityRun> runs;
   auto report = [&](const StabilityRun& r) {
-    std::fprintf(
-        stderr, "bench stability: %-34s x%-5g = %-10g %s, %ld clamps, max speed %.2f m/s, iou %.3f, %.0f s\n",
-        r.param.c_str(), r.factor, r.value, r.exploded ? "EXPLODED" : "stable", r.clamps, r.max_speed,
-        r.final_iou, r.wall_s);
+    std::fprintf(stderr,
+                 "bench stability: %-34s %-9s = %-10g %s, %ld clamps, max speed %.2f m/s, iou %.3f, %.0f s\n",
+                 r.param.c_str(), factor(r, "x").c_str(), r.value, r.exploded ? "EXPLODED" : "stable",
+                 r.clamps, r.max_speed, r.final_iou, r.wall_s);
   };
   StabilityRun base = runOne(scene, b, o.seconds, vx);
   base.param = "(none)";
   report(base);
   runs.push_back(base);
   for (const ParamInfo* p : params) {
-    for (double f : o.factors) {
+    const std::vector<double> factors = isSwitch(*p) ? std::vector<double>{0.0} : o.factors;
+    for (double f : factors) {
       SceneDesc s = scene;
       const double v0 = getValue(*p, s.params);
       bool clipped = false;
-      const double v = setScaled(*p, s.params, v0, f, clipped);
+      const double v = isSwitch(*p) ? setScaled(*p, s.params, 1.0 - v0, 1.0, clipped)
+                                    : setScaled(*p, s.params, v0, f, clipped);
       StabilityRun r;
       try {
         validateParams(s.params, "bench --stability");
@@ -142,7 +157,7 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
       } catch (const Error& e) {  // a combination validateParams refuses (e.g. the shape clock)
         r.nan = std::string("refused: ") + e.what();
       }
-      r.param = shortName(*p), r.factor = f, r.value = v, r.clipped = clipped;
+      r.param = shortName(*p), r.factor = f, r.value = v, r.clipped = clipped, r.switched = isSwitch(*p);
       report(r);
       runs.push_back(r);
     }
@@ -165,9 +180,9 @@ void printStability(std::FILE* out, const SceneDesc& scene, const std::vector<St
     char value[64] = "-";
     if (r.param != "(none)")
       std::snprintf(value, sizeof value, "%g%s", r.value, r.clipped ? " (range limit)" : "");
-    std::fprintf(out, "| %s | %g | %s | %s | %ld | %ld | %.3f | %.3f | %.3f | %.3f |\n", r.param.c_str(),
-                 r.factor, value, result.c_str(), r.clamps, r.clamped_steps, r.max_speed, r.max_density_error,
-                 r.final_iou, r.final_stray);
+    std::fprintf(out, "| %s | %s | %s | %s | %ld | %ld | %.3f | %.3f | %.3f | %.3f |\n", r.param.c_str(),
+                 factor(r).c_str(), value, result.c_str(), r.clamps, r.clamped_steps, r.max_speed,
+                 r.max_density_error, r.final_iou, r.final_stray);
   }
 }
 

@@ -1,7 +1,7 @@
 // bench_stability.h - `flowform bench --stability`: every control and
 // shape-matching parameter scaled one at a time (x0.25, x0.5, x2, x4 by
-// default) on one scene, each a short run, reporting NaN, explosions and the
-// velocity clamps (docs/RESULTS.md, "Stability sweep").
+// default; the on/off ones switched) on one scene, each a short run,
+// reporting NaN, explosions and the velocity clamps (docs/RESULTS.md, "Stability sweep").
 #pragma once
 #include <cstdio>
 #include <string>
@@ -21,8 +21,9 @@ struct StabilityOptions {
 struct StabilityRun {
   std::string param;  // "control.attraction", or "(none)" for the unscaled run
   double factor = 1.0;
-  double value = 0.0;    // the value run (scaled, then kept in the parameter's range)
-  bool clipped = false;  // the scaled value fell outside the range and was clipped to it
+  double value = 0.0;     // the value run (scaled, then kept in the parameter's range)
+  bool clipped = false;   // the scaled value fell outside the range and was clipped to it
+  bool switched = false;  // an on/off parameter, run switched the other way (factor unused)
   long steps = 0;
   std::string nan;  // empty, or where a value became NaN or Inf
   double max_speed = 0.0, max_density_error = 0.0;

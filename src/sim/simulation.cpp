@@ -17,9 +17,21 @@
 namespace ff {
 
 namespace {
-// The voxel size of a target that asks for neither a size nor a count.
-float defaultVoxelSize(const FluidParams& fp) {
-  return 1.55f * fp.restSpacing();
+// The fewest control particles a target that asks for neither a size nor a
+// count gets (a shape 4 voxels across), unless its fluid has fewer particles.
+constexpr double kMinAutoControls = 64.0;
+
+// The voxel size of a target that asks for neither a size nor a count, for
+// `fluid_volume` of controlled fluid: 1.55 fluid spacings (a control particle
+// per 3.7 fluid particles); for a small region, finer, down to one fluid
+// spacing, so that it still gets min(fluid particles, kMinAutoControls)
+// control particles (docs/CONTROL_UNITS.md, "How many control particles").
+float defaultVoxelSize(const FluidParams& fp, double fluid_volume) {
+  const float voxel = 1.55f * fp.restSpacing();
+  const double v = double(voxel), fluid = fluid_volume / double(fp.restVolume());
+  const double wanted = std::min(fluid, kMinAutoControls);
+  if (!(fluid_volume > 0.0) || fluid_volume / (v * v * v) >= wanted) return voxel;
+  return float(std::max(double(fp.restSpacing()), std::cbrt(fluid_volume / wanted)));
 }
 // The most control particles per controlled fluid particle: a voxel of a
 // quarter of the fluid's rest spacing. Denser control particles carry no more
@@ -83,7 +95,8 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
           "the controlled fluid's flags do not match the fluid");
   if (has_target_) {
     target_spec_ = readTargetState(r);
-    target_ = &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid));
+    target_ =
+        &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid, target_volume_));
     scene_.params = withControlRadius(scene_.params, target_->grid.voxel);
     backend_->setParams(scene_.params);
   }
@@ -278,10 +291,11 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   range(pz, lo.z(), hi.z());
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
-  checkControlCount(spec, count, volume, defaultVoxelSize(fp));
+  const float default_voxel = defaultVoxelSize(fp, volume);
+  checkControlCount(spec, count, volume, default_voxel);
   // The current shape stays in the cache (the backend still uses it) until
   // the new one is accepted.
-  const TargetShape& shape = cache_.get(spec, volume, defaultVoxelSize(fp), target_);
+  const TargetShape& shape = cache_.get(spec, volume, default_voxel, target_);
   checkClusterMemory(scene_.params.shape, shape.reference.size(), scene_.source);
   // Placed before any state changes: if placement throws, the simulation and
   // the backend keep the previous target, which the cache still holds.

@@ -9,6 +9,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_check.h"
 #include "ff_control.h"
+#include "ff_control_pull.h"
 #include "ff_grid.h"
 #include "ff_lanes.h"
 #include "ff_recapture_field.h"
@@ -66,83 +67,56 @@ __kernel void control_recapture_centre(__global const float* x, __global const f
 }
 
 // The accelerations of fluid particle e from its sums over the control
-// particles: attraction fa, weight wsum and weighted velocity vs*, after the
-// recapture's; reached[e]: whether a control particle was within the radius
-// (wsum > 0). The recapture reads its centre, fade and aim (rcentre, from
-// control_recapture_centre), its field of targets (seeds over the control
-// particles sx, sy, sz: recapture_field.cl; fgeo = the field's origin and
-// inverse cell size, fdims its cells per axis), the controlled fluid by
-// identity (all of it when use_mask is 0) and rparams = (speed, relaxation
-// rate, control radius, 0).
+// particles: attraction fa, weight wsum and weighted velocity vs*
+// (ff_control_fluid_accel, with the recapture's); reached[e]: whether a
+// control particle was within the radius (wsum > 0). The recapture reads its
+// centre, fade and aim (rcentre, from control_recapture_centre), its field of
+// targets (seeds over the control particles sx, sy, sz: recapture_field.cl)
+// and the controlled fluid by identity (all of it when P.use_mask is 0).
 inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, float vsy, float vsz,
                                   __global const float* x, __global const float* y, __global const float* z,
                                   __global const float* vx, __global const float* vy,
-                                  __global const float* vz, __global const float* rho, float cp_volume,
-                                  float full_at, float wa, float wv, float gc, int pull_mode,
-                                  float unit_scale, float4 gravity, float dt, __global const float* rcentre,
-                                  __global const uint* seeds, __global const float* sx,
-                                  __global const float* sy, __global const float* sz, float4 fgeo, int4 fdims,
-                                  __global const uint* id, __global const uchar* controlled, int use_mask,
-                                  float4 rparams, __global float* ax, __global float* ay, __global float* az,
-                                  __global uchar* reached, __global int* bad, int tag) {
+                                  __global const float* vz, __global const float* rho, FfControlArgs P,
+                                  __global const float* rcentre, __global const uint* seeds,
+                                  __global const float* sx, __global const float* sy,
+                                  __global const float* sz, __global const uint* id,
+                                  __global const uchar* controlled, __global float* ax, __global float* ay,
+                                  __global float* az, __global uchar* reached, __global int* bad) {
   reached[e] = wsum > 0.0f ? 1 : 0;
-  float bx = ax[e], by = ay[e], bz = az[e];
-  const float fade = rcentre[3];
-  if (rcentre[5] != 0.0f && (!use_mask || controlled[id[e]])) {
-    const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
-    const int m3[3] = {fdims.x, fdims.y, fdims.z};
-    const float o3[3] = {fgeo.x, fgeo.y, fgeo.z};
-    ff_float3 c;
-    if (k > 0.0f && ff_recapture_aim(rcentre[4] != 0.0f, FF_F3(rcentre[0], rcentre[1], rcentre[2]), seeds, sx,
-                                     sy, sz, x[e], y[e], z[e], m3, o3, fgeo.w, &c)) {
-      const ff_float3 a = ff_recapture_accel(
-          FF_F3(x[e], y[e], z[e]), FF_F3(vx[e], vy[e], vz[e]), c, FF_F3(gravity.x, gravity.y, gravity.z),
-          rparams.x, rparams.y, rparams.z, dt, k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
-      bx += a.x, by += a.y, bz += a.z;
-      ax[e] = bx, ay[e] = by, az[e] = bz;
-      if (!isfinite(bx) || !isfinite(by) || !isfinite(bz)) ff_report_nonfinite(bad, tag);
-    }
-  }
-  if (wsum <= 0.0f) return;
-  const float scale =
-      ff_pull_scale(pull_mode, wsum, cp_volume, pull_mode == FF_PULL_PER_DENSITY ? rho[e] : 1.0f, unit_scale);
-  const float kk = wv * wsum * scale;
-  fa = fa * (wa * scale);
-  // Gravity carried by the control (all of it inside the shape).
-  const float held = gc * ff_control_held(wsum, cp_volume, full_at);
-  fa = fa - FF_F3(gravity.x, gravity.y, gravity.z) * held;
-  const float rx = bx + (fa.x + ff_velocity_force_implicit(wv * vsx * scale, kk, vx[e], dt));
-  const float ry = by + (fa.y + ff_velocity_force_implicit(wv * vsy * scale, kk, vy[e], dt));
-  const float rz = bz + (fa.z + ff_velocity_force_implicit(wv * vsz * scale, kk, vz[e], dt));
-  ax[e] = rx, ay[e] = ry, az[e] = rz;
-  if (!isfinite(rx) || !isfinite(ry) || !isfinite(rz)) ff_report_nonfinite(bad, tag);
+  FfRecaptureNow R;
+  R.centre[0] = rcentre[0], R.centre[1] = rcentre[1], R.centre[2] = rcentre[2], R.fade = rcentre[3];
+  R.at_centre = rcentre[4] != 0.0f ? 1 : 0;
+  const int recaptured = rcentre[5] != 0.0f && (!P.use_mask || controlled[id[e]]) ? 1 : 0;
+  int changed = 0;
+  const ff_float3 a = ff_control_fluid_accel(P, R, FF_F3(ax[e], ay[e], az[e]), fa, wsum, FF_F3(vsx, vsy, vsz),
+                                             FF_F3(x[e], y[e], z[e]), FF_F3(vx[e], vy[e], vz[e]),
+                                             P.pull_mode == FF_PULL_PER_DENSITY ? rho[e] : 1.0f, recaptured,
+                                             seeds, sx, sy, sz, &changed);
+  if (!changed) return;
+  ax[e] = a.x, ay[e] = a.y, az[e] = a.z;
+  if (!isfinite(a.x) || !isfinite(a.y) || !isfinite(a.z)) ff_report_nonfinite(bad, P.tag);
 }
 
-// pull_mode (ff_pull_scale): FF_PULL_PER_DENSITY divides by rho_e (force density), FF_PULL_NORMALISED by
-// the local control weight; FF_PULL_UNITS multiplies by unit_scale (1, or 1 / m for a force).
-// full_at = ff_control_full_coverage(cp_volume, radius, ff_poly6_coef(radius)), evaluated
-// once on the host (as the CPU backend does) so that both use the same cbrt.
-// The control grid (cells of radius / FF_CONTROL_GRID_DIVISIONS) is read in
-// its rows within reach of `radius` (the largest), ascending: the order of
-// Controller::addForces; each control particle k weighs with its own kernel
-// (sr2[k], scoef[k] from control_gather).
+// The scalars travel in P (FfControlArgs, ff_control_pull.h).
+// The control grid (cells of P.cell = radius / FF_CONTROL_GRID_DIVISIONS) is
+// read in its rows within reach of P.radius (the largest), ascending: the
+// order of Controller::addForces; each control particle k weighs with its own
+// kernel (sr2[k], scoef[k] from control_gather).
 __kernel void control_forces(__global const float* x, __global const float* y, __global const float* z,
                              __global const float* vx, __global const float* vy, __global const float* vz,
                              __global const float* rho, uint n, __global const float* sx,
                              __global const float* sy, __global const float* sz, __global const float* ss,
                              __global const float* svx, __global const float* svy, __global const float* svz,
                              __global const float* sr2, __global const float* scoef,
-                             __global const uint* start, float4 geo, int4 dims, float cell, float radius,
-                             float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
-                             float unit_scale, float4 gravity, float dt, __global const float* rcentre,
-                             __global const uint* seeds, float4 fgeo, int4 fdims, __global const uint* id,
-                             __global const uchar* controlled, int use_mask, float4 rparams,
-                             __global float* ax, __global float* ay, __global float* az,
-                             __global uchar* reached, __global int* bad, int tag) {
+                             __global const uint* start, float4 geo, int4 dims, FfControlArgs P,
+                             __global const float* rcentre, __global const uint* seeds,
+                             __global const uint* id, __global const uchar* controlled, __global float* ax,
+                             __global float* ay, __global float* az, __global uchar* reached,
+                             __global int* bad) {
   const uint e = get_global_id(0);
   if (e >= n) return;
   const float xe = x[e], ye = y[e], ze = z[e];
-  const float reach = ff_query_reach(radius, cell);
+  const float reach = ff_query_reach(P.radius, P.cell);
   const int z0 = ff_cell_coord(ze - reach, geo.z, geo.w, dims.z),
             z1 = ff_cell_coord(ze + reach, geo.z, geo.w, dims.z);
   const int y0 = ff_cell_coord(ye - reach, geo.y, geo.w, dims.y),
@@ -154,7 +128,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
   for (int cz = z0; cz <= z1; ++cz) {
     for (int cy = y0; cy <= y1; ++cy) {
       uint b, en;
-      if (!ff_row_span(start, p3, p3, reach, cy, cz, o3, cell, geo.w, n3, &b, &en)) continue;
+      if (!ff_row_span(start, p3, p3, reach, cy, cz, o3, P.cell, geo.w, n3, &b, &en)) continue;
       for (uint k = b; k < en; ++k) {
         const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
         const float d2 = FF_DOT(d, d);
@@ -166,9 +140,8 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       }
     }
   }
-  control_forces_finish(e, fa, wsum, vsx, vsy, vsz, x, y, z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc,
-                        pull_mode, unit_scale, gravity, dt, rcentre, seeds, sx, sy, sz, fgeo, fdims, id,
-                        controlled, use_mask, rparams, ax, ay, az, reached, bad, tag);
+  control_forces_finish(e, fa, wsum, vsx, vsy, vsz, x, y, z, vx, vy, vz, rho, P, rcentre, seeds, sx, sy, sz,
+                        id, controlled, ax, ay, az, reached, bad);
 }
 
 // The same sums, 8 fluid particles per work-item (the fluid buffers hold a multiple of 8 floats).
@@ -178,24 +151,22 @@ __kernel void control_forces_lanes(
     __global const float* sx, __global const float* sy, __global const float* sz, __global const float* ss,
     __global const float* svx, __global const float* svy, __global const float* svz,
     __global const float* sr2, __global const float* scoef, __global const uint* start, float4 geo, int4 dims,
-    float cell, float radius, float cp_volume, float full_at, float wa, float wv, float gc, int pull_mode,
-    float unit_scale, float4 gravity, float dt, __global const float* rcentre, __global const uint* seeds,
-    float4 fgeo, int4 fdims, __global const uint* id, __global const uchar* controlled, int use_mask,
-    float4 rparams, __global float* ax, __global float* ay, __global float* az, __global uchar* reached,
-    __global int* bad, int tag) {
+    FfControlArgs P, __global const float* rcentre, __global const uint* seeds, __global const uint* id,
+    __global const uchar* controlled, __global float* ax, __global float* ay, __global float* az,
+    __global uchar* reached, __global int* bad) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
   const int8 valid = ff_lane_valid(i0, n);
   const float8 xe = ff_load_lanes(x, i0, valid, FF_LANE_FAR), ye = ff_load_lanes(y, i0, valid, FF_LANE_FAR),
                ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
-  const float reach = ff_query_reach(radius, cell);
+  const float reach = ff_query_reach(P.radius, P.cell);
   const FfLanesRows q = ff_lanes_rows(xe, ye, ze, valid, geo, dims, reach);
   const float8 zero = (float8)(0.0f);
   float8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
   for (int cz = q.z0; cz <= q.z1; ++cz)
     for (int cy = q.y0; cy <= q.y1; ++cy) {
       uint b, en;
-      if (!ff_row_span(start, q.lo, q.hi, reach, cy, cz, q.o, cell, geo.w, q.nn, &b, &en)) continue;
+      if (!ff_row_span(start, q.lo, q.hi, reach, cy, cz, q.o, P.cell, geo.w, q.nn, &b, &en)) continue;
       for (uint k = b; k < en; ++k) {
         const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
         const float8 d2 = dx * dx + dy * dy + dz * dz;
@@ -213,7 +184,6 @@ __kernel void control_forces_lanes(
   const uint m = n - i0 < 8u ? n - i0 : 8u;
   for (uint l = 0; l < m; ++l)
     control_forces_finish(i0 + l, FF_F3(s[0][l], s[1][l], s[2][l]), s[3][l], s[4][l], s[5][l], s[6][l], x, y,
-                          z, vx, vy, vz, rho, cp_volume, full_at, wa, wv, gc, pull_mode, unit_scale, gravity,
-                          dt, rcentre, seeds, sx, sy, sz, fgeo, fdims, id, controlled, use_mask, rparams, ax,
-                          ay, az, reached, bad, tag);
+                          z, vx, vy, vz, rho, P, rcentre, seeds, sx, sy, sz, id, controlled, ax, ay, az,
+                          reached, bad);
 }

@@ -6,6 +6,7 @@
 #include <memory>
 #include <utility>
 
+#include "control/control_args.h"
 #include "control/recapture_field.h"
 #include "ff_control.h"
 #include "ff_sph.h"
@@ -73,10 +74,7 @@ void ClControl::apply(ClForceContext& c, float dt) {
   launch(q, gather_, nc, d.control_r.order.get(), cl_uint(nc), d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
          d.cvx.get(), d.cvy.get(), d.cvz.get(), d.crs.get(), r, d.sx.get(), d.sy.get(), d.sz.get(),
          d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(), d.scoef.get());
-  const int pull_mode = cp.pullMode();
-  const float unit_scale = cp.units == ControlForceUnits::Force ? 1.0f / c.params.fluid.particle_mass : 1.0f;
   const float cp_volume = c.control.particle_volume;
-  const float full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
   const float* g = c.params.fluid.gravity;
   const DeviceGrid& cg = d.control_r;
   // Recapture (as Controller::addForces): its centre, fade and aim, then its
@@ -104,15 +102,13 @@ void ClControl::apply(ClForceContext& c, float dt) {
     }
   }
   const cl::Buffer& mask = c.masked ? d.controlled.get() : d.reach.get();  // unread without a mask
-  const cl_float4 rparams = f4(cp.recaptureSpeed(g), cp.recaptureRate(g), r, 0.0f);
+  const FfControlArgs P =
+      controlArgs(cp, g, c.params.fluid.particle_mass, cp_volume, dt, cg.geom.cell, fg, c.masked, c.tag);
   ClKernel& k = f.lanes ? forces_lanes_ : forces_;
   launch(q, k, f.lanes ? padded8(n) / 8 : n, *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, *f.rho, cl_uint(n),
          d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(),
-         d.scoef.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), cg.geom.cell, r, cp_volume, full_at,
-         cp.pullAttraction(g), cp.pullVelocity(g), cp.gravity_compensation, pull_mode, unit_scale,
-         f4(g[0], g[1], g[2], 0.0f), dt, d.rcentre.get(), d.rseeds[0].get(),
-         f4(fg.o[0], fg.o[1], fg.o[2], fg.inv_fcell), i4(fg.m[0], fg.m[1], fg.m[2], 0), d.id[d.cur].get(),
-         mask, cl_int(c.masked ? 1 : 0), rparams, *f.ax, *f.ay, *f.az, d.reach.get(), *f.bad, cl_int(c.tag));
+         d.scoef.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), P, d.rcentre.get(), d.rseeds[0].get(),
+         d.id[d.cur].get(), mask, *f.ax, *f.ay, *f.az, d.reach.get(), *f.bad);
 }
 
 }  // namespace

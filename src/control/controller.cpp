@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "control/control_args.h"
 #include "control/shape_matching.h"
 #include "ff_control.h"
+#include "ff_control_pull.h"
 #include "ff_recapture_field.h"
 #include "ff_sph.h"
 #include "parallel/parallel_grain.h"
@@ -160,7 +162,7 @@ bool Controller::computeScale(const FluidView& f) {
 bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, float* az) {
   const size_t n = set_.size();
   if (n == 0) return true;
-  const float r = cp_.radius, coef = ff_poly6_coef(r);
+  const float r = cp_.radius;
   const SortedFluid sf = sorted(f);
   // Control particles sorted by cell of their own grid, with s and velocity.
   const float cell = r / float(FF_CONTROL_GRID_DIVISIONS);
@@ -177,12 +179,7 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     const float ri = ff_control_radius(r, set_.radius_scale[i]);
     sr2_[k] = ri * ri, scoef_[k] = ff_poly6_coef(ri);
   }
-  const int mode = cp_.pullMode();
-  const float unit_scale = cp_.units == ControlForceUnits::Force ? 1.0f / f.mass : 1.0f;
-  const float wa = cp_.pullAttraction(f.gravity), wv = cp_.pullVelocity(f.gravity),
-              gc = cp_.gravity_compensation;
   const float cp_volume = set_.particle_volume;
-  const float full_at = ff_control_full_coverage(cp_volume, r, coef);
   // Recapture: the centre of the unfilled control particles and its fade.
   // It aims there where the centre lies among the control particles (within
   // one spacing of one), else (a torus's hole) each fluid particle at its
@@ -196,21 +193,20 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   // It acts whenever it is on: the fade scales it on fluid partly within
   // reach, fluid wholly out of reach is drawn back however full the shape
   // reads (ff_recapture_fade).
-  const ff_float3 ucentre = FF_F3(ucx / cw, ucy / cw, ucz / cw);
+  FfRecaptureNow now{};
+  now.centre[0] = ucx / cw, now.centre[1] = ucy / cw, now.centre[2] = ucz / cw;
   const bool acts = cp_.recapture > 0.0f;
-  const float fade = acts ? ff_recapture_fade(uw, float(n)) : 0.0f;
+  now.fade = acts ? ff_recapture_fade(uw, float(n)) : 0.0f;
   const int gn[3] = {cp_grid_.nx(), cp_grid_.ny(), cp_grid_.nz()};
   const float go[3] = {cp_grid_.originX(), cp_grid_.originY(), cp_grid_.originZ()};
-  const bool at_centre =
-      acts && ff_recapture_among(cp_grid_.cellStart().data(), sx_.data(), sy_.data(), sz_.data(), ucentre.x,
-                                 ucentre.y, ucentre.z, FF_CBRT(cp_volume), go, cp_grid_.cellSize(),
-                                 cp_grid_.invCellSize(), gn);
-  if (acts && !at_centre)
+  now.at_centre = acts && ff_recapture_among(cp_grid_.cellStart().data(), sx_.data(), sy_.data(), sz_.data(),
+                                             now.centre[0], now.centre[1], now.centre[2], FF_CBRT(cp_volume),
+                                             go, cp_grid_.cellSize(), cp_grid_.invCellSize(), gn);
+  if (acts && !now.at_centre)
     rfield_.build(cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data(), ff_recapture_seed_any(uw) != 0);
-  const RecaptureFieldGeom& rg = rfield_.geom();
+  const FfControlArgs P = controlArgs(cp_, f.gravity, f.mass, cp_volume, dt, cp_grid_.cellSize(),
+                                      rfield_.geom(), f.controlled_by_id != nullptr, 0);
   const uint32_t* seeds = rfield_.seeds().data();
-  const float rspeed = cp_.recaptureSpeed(f.gravity), rrate = cp_.recaptureRate(f.gravity);
-  const ff_float3 grav = FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]);
   const std::vector<uint32_t>& groups = *sf.groups;
   const long ngroups = long(groups.size() / 2);
   reached_.assign(f.n, 0);
@@ -225,31 +221,18 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
       const size_t l = k - b;
       const float wsum = sums[24 + l];
       const size_t i = sf.order ? sf.order[k] : k;
+      if (wsum > 0.0f) reached_[i] = 1;
       const bool recaptured = acts && (!f.controlled_by_id || f.controlled_by_id[f.id[i]]);
-      if (recaptured) {
-        const float k = ff_recapture_strength(wsum, cp_volume, full_at, fade);
-        ff_float3 c;
-        if (k > 0.0f && ff_recapture_aim(at_centre, ucentre, seeds, sx_.data(), sy_.data(), sz_.data(),
-                                         f.x[i], f.y[i], f.z[i], rg.m, rg.o, rg.inv_fcell, &c)) {
-          const ff_float3 a = ff_recapture_accel(
-              FF_F3(f.x[i], f.y[i], f.z[i]), FF_F3(f.vx[i], f.vy[i], f.vz[i]), c, grav, rspeed, rrate, r, dt,
-              k, ff_recapture_weightless(wsum, cp_volume, full_at, fade));
-          ax[i] += a.x, ay[i] += a.y, az[i] += a.z;
-        }
-      }
-      if (wsum <= 0.0f) continue;
-      reached_[i] = 1;
-      const float rho = mode == FF_PULL_PER_DENSITY ? (f.rho ? f.rho[i] : f.rest_density) : 1.0f;
-      const float scale = ff_pull_scale(mode, wsum, cp_volume, rho, unit_scale);
-      const float kv = wv * wsum * scale;
-      ff_float3 fa = FF_F3(sums[l], sums[8 + l], sums[16 + l]) * (wa * scale);
-      // Gravity carried by the control (all of it inside the shape).
-      const float held = gc * ff_control_held(wsum, cp_volume, full_at);
-      fa = fa - FF_F3(f.gravity[0], f.gravity[1], f.gravity[2]) * held;
-      ax[i] += fa.x + ff_velocity_force_implicit(wv * sums[32 + l] * scale, kv, f.vx[i], dt);
-      ay[i] += fa.y + ff_velocity_force_implicit(wv * sums[40 + l] * scale, kv, f.vy[i], dt);
-      az[i] += fa.z + ff_velocity_force_implicit(wv * sums[48 + l] * scale, kv, f.vz[i], dt);
-      bad |= std::isfinite(ax[i]) && std::isfinite(ay[i]) && std::isfinite(az[i]) ? 0 : 1;
+      const float rho = P.pull_mode == FF_PULL_PER_DENSITY ? (f.rho ? f.rho[i] : f.rest_density) : 1.0f;
+      int changed = 0;
+      const ff_float3 a = ff_control_fluid_accel(
+          P, now, FF_F3(ax[i], ay[i], az[i]), FF_F3(sums[l], sums[8 + l], sums[16 + l]), wsum,
+          FF_F3(sums[32 + l], sums[40 + l], sums[48 + l]), FF_F3(f.x[i], f.y[i], f.z[i]),
+          FF_F3(f.vx[i], f.vy[i], f.vz[i]), rho, recaptured ? 1 : 0, seeds, sx_.data(), sy_.data(),
+          sz_.data(), &changed);
+      if (!changed) continue;
+      ax[i] = a.x, ay[i] = a.y, az[i] = a.z;
+      bad |= std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z) ? 0 : 1;
     }
   }
   return !bad;

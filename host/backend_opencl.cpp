@@ -21,7 +21,9 @@ OpenClBackend::Impl::Impl(int device_index)
   pressure_wcsph_lanes = makeKernel(program, "pressure_wcsph_lanes", ctx, kLaneGroupCap);
   sm_frames = makeKernel(program, "sm_cluster_frames", ctx);
   sm_frames_by_lane = makeKernel(program, "sm_cluster_frames_by_lane", ctx, 256, 15 * sizeof(float));
-  sm_particles = makeKernel(program, "sm_particles", ctx);
+  sm_velocities = makeKernel(program, "sm_velocities", ctx);
+  sm_anchor = makeKernel(program, "sm_anchor", ctx);
+  sm_integrate = makeKernel(program, "sm_integrate", ctx);
   m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 5 * sizeof(float));
   m_coverage = makeKernel(program, "metrics_coverage", ctx, 256, sizeof(float));
   m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
@@ -124,6 +126,7 @@ void OpenClBackend::setParams(const Params& params) {
 
 void OpenClBackend::setControl(ControlSet set) {
   control_ = std::move(set);
+  anchorAtCentre(control_);  // as Controller::reset
   nc_ = control_.size();
   if (control_.radius_scale.size() != nc_) control_.radius_scale.assign(nc_, 1.0f);  // as Controller::reset
   nclusters_ = control_.clusters.count();
@@ -340,7 +343,7 @@ size_t OpenClBackend::memoryBytes() const {
         &d.cl_start, &d.cl_members, &d.rest_cx,   &d.rest_cy,   &d.rest_cz, &d.of_start,   &d.of,
         &d.q,        &d.com_x,      &d.com_y,     &d.com_z,     &d.ccv_x,   &d.ccv_y,      &d.ccv_z,
         &d.inside,   &d.rcentre,    &d.rseeds[0], &d.rseeds[1], &d.reach,   &d.controlled, &d.partial,
-        &d.clamps,   &d.bad})
+        &d.clamps,   &d.bad,        &d.anchor_fix})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes() +
          (dfsph_ ? dfsph_->memoryBytes() : 0);

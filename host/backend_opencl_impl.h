@@ -20,7 +20,7 @@ struct OpenClBackend::Impl {
   GridBuilder grids;
   // The non-pressure forces' kernels belong to their plug-ins (host/forces/).
   ClKernel reorder, density, pressure_wcsph, integrate;
-  ClKernel sm_frames, sm_particles;
+  ClKernel sm_frames, sm_velocities, sm_anchor, sm_integrate;
   ClKernel sm_frames_by_lane;                    // 8 work-items per shape-matching cluster (GPUs)
   ClKernel density_lanes, pressure_wcsph_lanes;  // 8 particles per work-item
   ClKernel m_iou_lanes;                          // 8 voxels per work-item
@@ -44,6 +44,7 @@ struct OpenClBackend::Impl {
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;
+  DeviceBuffer anchor_fix;  // the anchor's correction: dv, dw, com (9 floats; ff_anchor.h)
 
   DeviceBuffer inside;      // the metrics target's voxels (uchar)
   DeviceBuffer reach;       // per fluid particle: a control particle within reach in control_forces (uchar)

@@ -1,6 +1,8 @@
 // backend_opencl_shape_matching.cpp - the shape-matching phase of the OpenCL
 // backend (Controller::advance); the control's forces on the fluid are its
 // plug-in host/forces/control.cpp.
+#include <cmath>
+
 #include "host/backend_opencl.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
@@ -44,12 +46,28 @@ void OpenClBackend::runShapeMatchStep(int tag) {
       d.z0.get(), d.cl_start.get(), d.cl_members.get(), d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(),
       cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.q.get(), d.com_x.get(), d.com_y.get(),
       d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get());
-  launch(d.queue(), d.sm_particles, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
+  launch(d.queue(), d.sm_velocities, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
          d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_), d.of_start.get(), d.of.get(),
          d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), d.q.get(), d.com_x.get(), d.com_y.get(),
          d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(),
-         sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, boxLo(box_), boxHi(box_),
-         d.gx.get(), d.gy.get(), d.gz.get(), d.bad.get(), cl_int(tag));
+         sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, d.gx.get(), d.gy.get(),
+         d.gz.get());
+  // The anchor (ff_anchor.h), as Controller::shapeMatchStep.
+  const float* g = params_.fluid.gravity;
+  const float gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  const bool anchored = sm.anchor != 0 && gl > 0.0f;
+  d.anchor_fix.ensure(d.ctx.context(), 9 * sizeof(float));
+  if (anchored) {
+    const ControlSet& s = control_;
+    launch(d.queue(), d.sm_anchor, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
+           d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_),
+           f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f), f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f),
+           f4(-g[0] / gl, -g[1] / gl, -g[2] / gl, 0.0f), sm.stiffness, sm.time_step, d.q.get(),
+           cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.anchor_fix.get());
+  }
+  launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
+         d.cvz.get(), cl_uint(nc_), sm.time_step, cl_int(anchored ? 1 : 0), d.anchor_fix.get(), boxLo(box_),
+         boxHi(box_), d.bad.get(), cl_int(tag));
 }
 
 }  // namespace ff

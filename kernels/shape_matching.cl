@@ -3,9 +3,10 @@
 // rotation (ff_extract_rotation, warm-started from the cluster's quaternion
 // kept on the device) and the mean velocity, summed in the lane order of
 // ff_cluster_sums.h; per control particle the goal (eq. 8), the damping and
-// fluid feedback, eq. 7, integration and the container clamp. Mirrors src/control/shape_matching.cpp and
-// controller.cpp.
+// fluid feedback, eq. 7, the anchor (ff_anchor.h), integration and the container clamp. Mirrors
+// src/control/shape_matching.cpp and controller.cpp.
 #pragma OPENCL FP_CONTRACT OFF
+#include "ff_anchor.h"
 #include "ff_check.h"
 #include "ff_cluster_sums.h"
 #include "ff_control.h"
@@ -83,19 +84,20 @@ __kernel void sm_cluster_frames_by_lane(
   cv_x[c] = cv.x, cv_y[c] = cv.y, cv_z[c] = cv.z;
 }
 
-// Goals (kept for reading back), then the velocity update and integration.
-__kernel void sm_particles(__global float* x, __global float* y, __global float* z, __global float* vx,
-                           __global float* vy, __global float* vz, __global const float* x0,
-                           __global const float* y0, __global const float* z0, uint n,
-                           __global const uint* of_start, __global const uint* of,
-                           __global const float* rest_cx, __global const float* rest_cy,
-                           __global const float* rest_cz, __global const float4* q,
-                           __global const float* com_x, __global const float* com_y,
-                           __global const float* com_z, __global const float* cv_x,
-                           __global const float* cv_y, __global const float* cv_z, __global const float* ux,
-                           __global const float* uy, __global const float* uz, float h, float alpha,
-                           float feedback, float damping, float4 box_lo, float4 box_hi, __global float* gx,
-                           __global float* gy, __global float* gz, __global int* bad, int tag) {
+// Goals (kept for reading back), then the velocities after damping, feedback
+// and eq. 7 (Controller::shapeMatchStep's first loop).
+__kernel void sm_velocities(__global const float* x, __global const float* y, __global const float* z,
+                            __global float* vx, __global float* vy, __global float* vz,
+                            __global const float* x0, __global const float* y0, __global const float* z0,
+                            uint n, __global const uint* of_start, __global const uint* of,
+                            __global const float* rest_cx, __global const float* rest_cy,
+                            __global const float* rest_cz, __global const float4* q,
+                            __global const float* com_x, __global const float* com_y,
+                            __global const float* com_z, __global const float* cv_x,
+                            __global const float* cv_y, __global const float* cv_z, __global const float* ux,
+                            __global const float* uy, __global const float* uz, float h, float alpha,
+                            float feedback, float damping, __global float* gx, __global float* gy,
+                            __global float* gz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint b = of_start[i], e = of_start[i + 1];
@@ -123,6 +125,37 @@ __kernel void sm_particles(__global float* x, __global float* y, __global float*
   v = ff_feedback_velocity(v, vc, damping);  // towards the clusters' motion
   v = ff_feedback_velocity(v, FF_F3(ux[i], uy[i], uz[i]), feedback);
   v += ff_shape_match_dv(goal, p, alpha, h);
+  vx[i] = v.x, vy[i] = v.y, vz[i] = v.z;
+}
+
+// The anchor's correction (ff_anchor.h), one work-item over the whole set:
+// out = dv, dw, com (9 floats).
+__kernel void sm_anchor(__global const float* x, __global const float* y, __global const float* z,
+                        __global const float* vx, __global const float* vy, __global const float* vz,
+                        __global const float* x0, __global const float* y0, __global const float* z0, uint n,
+                        float4 rest_c, float4 anchor, float4 up, float alpha, float h,
+                        __global const float4* q, uint nclusters, int iterations, __global float* out) {
+  if (get_global_id(0) != 0) return;
+  const ff_quat qw = nclusters > 0u ? q[0] : FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
+  const ff_anchor_fix f = ff_anchor_correction(
+      x, y, z, vx, vy, vz, x0, y0, z0, n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
+      FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), alpha, h, qw, iterations);
+  out[0] = f.dv.x, out[1] = f.dv.y, out[2] = f.dv.z, out[3] = f.dw.x, out[4] = f.dw.y, out[5] = f.dw.z;
+  out[6] = f.com.x, out[7] = f.com.y, out[8] = f.com.z;
+}
+
+// The anchor's correction (anchored != 0: from fix), integration and the container clamp.
+__kernel void sm_integrate(__global float* x, __global float* y, __global float* z, __global float* vx,
+                           __global float* vy, __global float* vz, uint n, float h, int anchored,
+                           __global const float* fix, float4 box_lo, float4 box_hi, __global int* bad,
+                           int tag) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  ff_float3 v = FF_F3(vx[i], vy[i], vz[i]);
+  const ff_float3 p = FF_F3(x[i], y[i], z[i]);
+  if (anchored)
+    v = ff_anchor_velocity(v, p, FF_F3(fix[0], fix[1], fix[2]), FF_F3(fix[3], fix[4], fix[5]),
+                           FF_F3(fix[6], fix[7], fix[8]));
   ff_float3 np = p + v * h;
   float c3[3] = {np.x, np.y, np.z}, v3[3] = {v.x, v.y, v.z};
   const float lo[3] = {box_lo.x, box_lo.y, box_lo.z}, hi[3] = {box_hi.x, box_hi.y, box_hi.z};

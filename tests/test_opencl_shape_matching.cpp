@@ -141,56 +141,63 @@ TEST(OpenClShapeMatching, ClusterSumsAgreeOnBothVariantsAndTheCpuBackend) {
   ASSERT_GT(control.size(), 200u);
   control.clusters = windowClusters(control);
   deform(control);
-  const ff::Params& params = sim.scene().params;
+  // Both with the anchor (ff_anchor.h: its sums over the whole set and its
+  // correction) and without it.
+  for (int anchor : {0, 1}) {
+    SCOPED_TRACE(anchor ? "anchored" : "not anchored");
+    ff::Params params = sim.scene().params;
+    params.shape.anchor = anchor;
+    ASSERT_NE(params.fluid.gravity[1], 0.0f);
 
-  ff::CpuBackend cpu(2);
-  step(cpu, params, scene, fluid, control);
-  Result ref;
-  ref.q = cpu.controller().clusterRotations();
-  const ff::ControlSet& cs = cpu.controller().set();
-  ref.v[0] = cpu.controller().goalX(), ref.v[1] = cpu.controller().goalY(),
-  ref.v[2] = cpu.controller().goalZ();
-  ref.v[3] = cs.x, ref.v[4] = cs.y, ref.v[5] = cs.z, ref.v[6] = cs.vx, ref.v[7] = cs.vy, ref.v[8] = cs.vz;
-  ASSERT_EQ(ref.q.size(), kClusters);
-  // Every cluster turned (by about 0.4 rad, |w| = cos(0.2) = 0.980; a flat
-  // cluster's warm-started iterations get part of the way): more than 0.09 rad.
-  for (const ff_quat& q : ref.q) EXPECT_LT(std::fabs(q.w), 0.999f);
+    ff::CpuBackend cpu(2);
+    step(cpu, params, scene, fluid, control);
+    Result ref;
+    ref.q = cpu.controller().clusterRotations();
+    const ff::ControlSet& cs = cpu.controller().set();
+    ref.v[0] = cpu.controller().goalX(), ref.v[1] = cpu.controller().goalY(),
+    ref.v[2] = cpu.controller().goalZ();
+    ref.v[3] = cs.x, ref.v[4] = cs.y, ref.v[5] = cs.z, ref.v[6] = cs.vx, ref.v[7] = cs.vy, ref.v[8] = cs.vz;
+    ASSERT_EQ(ref.q.size(), kClusters);
+    // Every cluster turned (by about 0.4 rad, |w| = cos(0.2) = 0.980; a flat
+    // cluster's warm-started iterations get part of the way): more than 0.09 rad.
+    for (const ff_quat& q : ref.q) EXPECT_LT(std::fabs(q.w), 0.999f);
 
-  for (auto variant : {ff::OpenClBackend::KernelVariant::Scalar, ff::OpenClBackend::KernelVariant::Lanes}) {
-    std::unique_ptr<ff::OpenClBackend> ocl;
-    ASSERT_NO_THROW(ocl = std::make_unique<ff::OpenClBackend>(-1)) << "the OpenCL backend did not start";
-    ocl->setKernelVariant(variant);
-    const bool lanes = variant == ff::OpenClBackend::KernelVariant::Lanes;
-    ASSERT_EQ(ocl->usesLanes(), lanes);
-    const bool pocl = ff::roundsAsTheCpuBackend(ocl->deviceInfo());
-    step(*ocl, params, scene, fluid, control);
-    Result got;
-    ocl->readClusterRotations(got.q);
-    ocl->readGoals(got.v[0], got.v[1], got.v[2]);
-    ff::ControlSet oc;
-    ff::ControlFields of;
-    ocl->readControl(oc, of);
-    got.v[3] = oc.x, got.v[4] = oc.y, got.v[5] = oc.z, got.v[6] = oc.vx, got.v[7] = oc.vy, got.v[8] = oc.vz;
-    const char* names[9] = {"goal x", "goal y", "goal z", "x", "y", "z", "vx", "vy", "vz"};
-    const char* which = lanes ? "lanes kernels" : "scalar kernels";
-    ASSERT_EQ(got.q.size(), ref.q.size()) << which;
-    if (pocl) {
-      EXPECT_EQ(std::memcmp(got.q.data(), ref.q.data(), ref.q.size() * sizeof(ff_quat)), 0)
-          << which << ": cluster rotations differ";
-      for (int k = 0; k < 9; ++k) EXPECT_TRUE(sameBits(got.v[k], ref.v[k])) << which << ": " << names[k];
-    } else {  // another device's rounding: the per-phase GPU tolerance of each value's scale
-      for (size_t c = 0; c < ref.q.size(); ++c) {
-        const ff_quat a = ref.q[c], b = got.q[c];
-        const double d =
-            std::fabs(a.x - b.x) + std::fabs(a.y - b.y) + std::fabs(a.z - b.z) + std::fabs(a.w - b.w);
-        EXPECT_LE(d, ff::test::kGpuPhaseTol) << which << ", cluster " << c;
+    for (auto variant : {ff::OpenClBackend::KernelVariant::Scalar, ff::OpenClBackend::KernelVariant::Lanes}) {
+      std::unique_ptr<ff::OpenClBackend> ocl;
+      ASSERT_NO_THROW(ocl = std::make_unique<ff::OpenClBackend>(-1)) << "the OpenCL backend did not start";
+      ocl->setKernelVariant(variant);
+      const bool lanes = variant == ff::OpenClBackend::KernelVariant::Lanes;
+      ASSERT_EQ(ocl->usesLanes(), lanes);
+      const bool pocl = ff::roundsAsTheCpuBackend(ocl->deviceInfo());
+      step(*ocl, params, scene, fluid, control);
+      Result got;
+      ocl->readClusterRotations(got.q);
+      ocl->readGoals(got.v[0], got.v[1], got.v[2]);
+      ff::ControlSet oc;
+      ff::ControlFields of;
+      ocl->readControl(oc, of);
+      got.v[3] = oc.x, got.v[4] = oc.y, got.v[5] = oc.z, got.v[6] = oc.vx, got.v[7] = oc.vy, got.v[8] = oc.vz;
+      const char* names[9] = {"goal x", "goal y", "goal z", "x", "y", "z", "vx", "vy", "vz"};
+      const char* which = lanes ? "lanes kernels" : "scalar kernels";
+      ASSERT_EQ(got.q.size(), ref.q.size()) << which;
+      if (pocl) {
+        EXPECT_EQ(std::memcmp(got.q.data(), ref.q.data(), ref.q.size() * sizeof(ff_quat)), 0)
+            << which << ": cluster rotations differ";
+        for (int k = 0; k < 9; ++k) EXPECT_TRUE(sameBits(got.v[k], ref.v[k])) << which << ": " << names[k];
+      } else {  // another device's rounding: the per-phase GPU tolerance of each value's scale
+        for (size_t c = 0; c < ref.q.size(); ++c) {
+          const ff_quat a = ref.q[c], b = got.q[c];
+          const double d =
+              std::fabs(a.x - b.x) + std::fabs(a.y - b.y) + std::fabs(a.z - b.z) + std::fabs(a.w - b.w);
+          EXPECT_LE(d, ff::test::kGpuPhaseTol) << which << ", cluster " << c;
+        }
+        // positions: scale 0.2 m (the container); velocities: alpha / dt of it (eq. 7)
+        const double v_scale = params.shape.stiffness / params.shape.time_step * 0.2;
+        for (int k = 0; k < 9; ++k)
+          for (size_t i = 0; i < ref.v[k].size(); ++i)
+            EXPECT_NEAR(got.v[k][i], ref.v[k][i], ff::test::kGpuPhaseTol * (k < 6 ? 0.2 : v_scale))
+                << which << ": " << names[k] << "[" << i << "]";
       }
-      // positions: scale 0.2 m (the container); velocities: alpha / dt of it (eq. 7)
-      const double v_scale = params.shape.stiffness / params.shape.time_step * 0.2;
-      for (int k = 0; k < 9; ++k)
-        for (size_t i = 0; i < ref.v[k].size(); ++i)
-          EXPECT_NEAR(got.v[k][i], ref.v[k][i], ff::test::kGpuPhaseTol * (k < 6 ? 0.2 : v_scale))
-              << which << ": " << names[k] << "[" << i << "]";
     }
   }
 }

@@ -5,8 +5,10 @@
 // already sorted by the rest shape's grid cell); neighbour queries go through
 // an index grid rebuilt each step, so cluster membership never needs remapping.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace ff {
@@ -34,8 +36,22 @@ struct ControlSet {
   Clusters clusters;
   float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
   float particle_volume = 0;                    // rest volume of one control particle (the voxel volume)
+  // The anchor (shape_matching.anchor, kernels/common/ff_anchor.h): the centre
+  // of mass the set is held at along "up", where the placement put the rest
+  // shape (placeControlParticles). NaN: the set's centre of mass when the
+  // controller takes it (anchorAtCentre).
+  float anchor_x = std::numeric_limits<float>::quiet_NaN(), anchor_y = anchor_x, anchor_z = anchor_x;
   size_t size() const { return x.size(); }
 };
+
+// Sets an unset (non-finite) anchor to the set's centre of mass.
+inline void anchorAtCentre(ControlSet& s) {
+  if (std::isfinite(s.anchor_x) && std::isfinite(s.anchor_y) && std::isfinite(s.anchor_z)) return;
+  double cx = 0, cy = 0, cz = 0;
+  for (size_t p = 0; p < s.size(); ++p) cx += s.x[p], cy += s.y[p], cz += s.z[p];
+  const double n = s.size() ? double(s.size()) : 1.0;
+  s.anchor_x = float(cx / n), s.anchor_y = float(cy / n), s.anchor_z = float(cz / n);
+}
 
 // Per-step values the controller computes for each control particle.
 struct ControlFields {

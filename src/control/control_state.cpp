@@ -12,6 +12,7 @@ void Controller::saveState(StateWriter& w) const {
   w.vec(c.start), w.vec(c.members), w.vec(c.rest_cx), w.vec(c.rest_cy), w.vec(c.rest_cz);
   w.vec(c.of_start), w.vec(c.of);
   w.pod(set_.rest_cx), w.pod(set_.rest_cy), w.pod(set_.rest_cz), w.pod(set_.particle_volume);
+  w.pod(set_.anchor_x), w.pod(set_.anchor_y), w.pod(set_.anchor_z);
   w.vec(fields_.s), w.vec(fields_.ux), w.vec(fields_.uy), w.vec(fields_.uz);
   w.vec(q_);
   w.pod(clock_);
@@ -27,6 +28,7 @@ void Controller::loadState(StateReader& r) {
   r.vec(c.start), r.vec(c.members), r.vec(c.rest_cx), r.vec(c.rest_cy), r.vec(c.rest_cz);
   r.vec(c.of_start), r.vec(c.of);
   r.pod(set.rest_cx), r.pod(set.rest_cy), r.pod(set.rest_cz), r.pod(set.particle_volume);
+  r.pod(set.anchor_x), r.pod(set.anchor_y), r.pod(set.anchor_z);
   // Every index must point inside its array: a corrupted file must not make
   // the shape-matching loops read out of bounds.
   const size_t n = set.x.size();

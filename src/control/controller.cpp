@@ -5,6 +5,7 @@
 
 #include "control/control_args.h"
 #include "control/shape_matching.h"
+#include "ff_anchor.h"
 #include "ff_control.h"
 #include "ff_control_pull.h"
 #include "ff_recapture_field.h"
@@ -21,6 +22,7 @@ void Controller::setBounds(const float lo[3], const float hi[3]) {
 
 void Controller::reset(ControlSet set) {
   set_ = std::move(set);
+  anchorAtCentre(set_);
   const size_t n = set_.size();
   if (set_.radius_scale.size() != n) set_.radius_scale.assign(n, 1.0f);
   fields_.s.assign(n, 1.0f);
@@ -310,8 +312,8 @@ bool Controller::shapeMatchStep() {
   clusterVelocities(set_, cvx_, cvy_, cvz_);
   const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback, damp = sm_.damping;
   const Clusters& cl = set_.clusters;
-  int bad = 0;
-#pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)
+  // The velocities after damping, feedback and eq. 7.
+#pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
@@ -324,6 +326,25 @@ bool Controller::shapeMatchStep() {
     v = ff_feedback_velocity(v, vc, damp);  // the same relaxation, towards the clusters' motion
     v = ff_feedback_velocity(v, FF_F3(fields_.ux[i], fields_.uy[i], fields_.uz[i]), fb);
     v += ff_shape_match_dv(FF_F3(gx_[i], gy_[i], gz_[i]), x, alpha, h);
+    set_.vx[i] = v.x, set_.vy[i] = v.y, set_.vz[i] = v.z;
+  }
+  // The anchor: the set's rigid motion along up and its tilt (ff_anchor.h).
+  const float gl = std::sqrt(g_[0] * g_[0] + g_[1] * g_[1] + g_[2] * g_[2]);
+  const bool anchored = sm_.anchor != 0 && gl > 0.0f;
+  ff_anchor_fix fix{};
+  if (anchored)
+    fix = ff_anchor_correction(set_.x.data(), set_.y.data(), set_.z.data(), set_.vx.data(), set_.vy.data(),
+                               set_.vz.data(), set_.x0.data(), set_.y0.data(), set_.z0.data(), uint32_t(n),
+                               FF_F3(set_.rest_cx, set_.rest_cy, set_.rest_cz),
+                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z),
+                               FF_F3(-g_[0] / gl, -g_[1] / gl, -g_[2] / gl), alpha, h,
+                               q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], sm_.rotation_iterations);
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)
+  for (long i = 0; i < n; ++i) {
+    ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
+    const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
+    if (anchored) v = ff_anchor_velocity(v, x, fix.dv, fix.dw, fix.com);
     ff_float3 nx = x + v * h;
     if (bounded_) {
       float* c[3] = {&nx.x, &nx.y, &nx.z};

@@ -42,6 +42,8 @@ struct FluidView {
 class Controller {
  public:
   void setParams(const ControlParams& cp, const ShapeMatchParams& sm) { cp_ = cp, sm_ = sm; }
+  // The host's gravity: the anchor (sm.anchor) holds the set against it (none while it is 0).
+  void setGravity(const float g[3]) { g_[0] = g[0], g_[1] = g[1], g_[2] = g[2]; }
   // Control particles are kept inside this box (the container), if set.
   void setBounds(const float lo[3], const float hi[3]);
   // New control particles (a new target or region). Restarts the shape-matching clock.
@@ -100,6 +102,7 @@ class Controller {
   ControlSet set_;
   ControlFields fields_;
   bool bounded_ = false;
+  float g_[3] = {0, 0, 0};
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};
   // The fluid sorted by a grid: the view's own when it has one, else a copy.
   struct SortedFluid {

@@ -84,6 +84,9 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
       shift[d] = box_lo[d] - glo;
     else if (ghi > box_hi[d])
       shift[d] = box_hi[d] - ghi;
+    // The anchor (ff_anchor.h) holds the set where the rigid shape fits,
+    // however far that is from the region.
+    (d == 0 ? set.anchor_x : d == 1 ? set.anchor_y : set.anchor_z) = com[d] + shift[d];
     // Never by more than half the region: the particles must start over
     // their fluid, or they would form the shape away from it.
     const float cap = 0.5f * rext[d];

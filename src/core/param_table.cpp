@@ -126,6 +126,10 @@ const std::vector<ParamInfo>& paramTable() {
       {"shape_matching", "damping", T::Real, 0.0, 1.0, false,
        "how far a control particle's velocity moves towards its clusters' mean per step",
        FF_FIELD(shape.damping)},
+      {"shape_matching", "anchor", T::Integer, 0, 1, false,
+       "1: the control set's height and up axis stay where it was placed (relaxing back at the stiffness); "
+       "0: they follow the fluid (the paper)",
+       FF_FIELD(shape.anchor)},
   };
   return table;
 }

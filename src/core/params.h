@@ -122,6 +122,12 @@ struct ShapeMatchParams {
   // clusters. Rigid motion is untouched. Plain shape matching with stiffness
   // < 1 is an undamped oscillator; this makes it converge.
   float damping = 0.1f;
+  // The anchor (docs/CONTROL_UNITS.md, "Anchor"; kernels/common/ff_anchor.h):
+  // 1 = the control set's height and its up axis stay where the placement put
+  // them (its rigid velocity along up and its turning about the horizontal
+  // axes relax them back at eq. 7's stiffness); 0 = they follow the fluid,
+  // as the paper (the default).
+  int anchor = 0;
 
   // The most clusters one control particle belongs to: the lattice points
   // (multiples of the stride) within half_width voxels, per axis

@@ -40,6 +40,7 @@ void CpuBackend::setParams(const Params& params) {
   if (!solver_ || solver_->name() != solverName(params.fluid.solver))
     solver_ = makeCpuPressureSolver(params.fluid.solver);
   controller_.setParams(params.control, params.shape);
+  controller_.setGravity(params.fluid.gravity);
 }
 
 void CpuBackend::setControl(ControlSet set) {

@@ -17,7 +17,7 @@
 
 namespace ff {
 
-constexpr unsigned kCheckpointVersion = 4;  // 3: control radius scale; 4: the DFSPH substep
+constexpr unsigned kCheckpointVersion = 5;  // 3: control radius scale; 4: the DFSPH substep; 5: the anchor
 
 // Writes the run to `path` (through a temporary file and a rename, so an
 // interrupted write never leaves a half file under that name). Throws

@@ -24,7 +24,7 @@ OpenClBackend::Impl::Impl(int device_index)
   sm_velocities = makeKernel(program, "sm_velocities", ctx);
   sm_anchor = makeKernel(program, "sm_anchor", ctx);
   sm_integrate = makeKernel(program, "sm_integrate", ctx);
-  m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 5 * sizeof(float));
+  m_fluid = makeKernel(program, "metrics_fluid", ctx, 256, 6 * sizeof(float));
   m_coverage = makeKernel(program, "metrics_coverage", ctx, 256, sizeof(float));
   m_com = makeKernel(program, "metrics_com", ctx, 256, 3 * sizeof(float));
   m_apq = makeKernel(program, "metrics_apq", ctx, 256, 9 * sizeof(float));

@@ -50,13 +50,14 @@ StepMetrics OpenClBackend::computeMetrics() {
     fillBuffer(q, d.clamps, cl_uint(0), 1);
     m.velocity_clamps = long(clamps);
     if (n_ > 0) {
-      const std::vector<double> f = reduce(d.m_fluid, n_, 5, (1u << 2) | (1u << 3), d.rho.get(), d.VX(),
-                                           d.VY(), d.VZ(), cl_uint(n_), rho0);
+      const std::vector<double> f = reduce(d.m_fluid, n_, 6, (1u << 2) | (1u << 3) | (1u << 5), d.rho.get(),
+                                           d.p.get(), d.VX(), d.VY(), d.VZ(), cl_uint(n_), rho0);
       m.density_error = f[0] / double(n_);
       m.kinetic_energy = 0.5 * double(mass) * f[1];
       m.max_speed = std::sqrt(f[2]);
       m.max_density = f[3];
       m.compression = f[4] / double(n_);
+      m.max_pressure = f[5];
     }
     if (nc_ == 0) return m;
     m.coverage = reduce(d.m_coverage, nc_, 1, 0u, d.s.get(), cl_uint(nc_))[0] / double(nc_);

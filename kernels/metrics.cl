@@ -29,23 +29,24 @@ void ff_group_reduce(__local float* tmp, int width, int max_mask, __global float
 }
 
 // (sum |rho - rho0| / rho0, sum |v|^2, max |v|^2, max rho,
-//  sum max(rho - rho0, 0) / rho0) per group.
-__kernel void metrics_fluid(__global const float* rho, __global const float* vx, __global const float* vy,
-                            __global const float* vz, uint n, float rho0, __global float* partial,
-                            __local float* tmp) {
-  float derr = 0.0f, v2sum = 0.0f, v2max = 0.0f, rho_max = 0.0f, comp = 0.0f;
+//  sum max(rho - rho0, 0) / rho0, max p) per group.
+__kernel void metrics_fluid(__global const float* rho, __global const float* p, __global const float* vx,
+                            __global const float* vy, __global const float* vz, uint n, float rho0,
+                            __global float* partial, __local float* tmp) {
+  float derr = 0.0f, v2sum = 0.0f, v2max = 0.0f, rho_max = 0.0f, comp = 0.0f, p_max = 0.0f;
   for (uint i = get_global_id(0); i < n; i += get_global_size(0)) {
     derr += fabs(rho[i] - rho0) / rho0;
     comp += fmax(rho[i] - rho0, 0.0f) / rho0;
     rho_max = fmax(rho_max, rho[i]);
+    p_max = fmax(p_max, p[i]);
     const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
     v2sum += v2;
     v2max = fmax(v2max, v2);
   }
   const uint lid = get_local_id(0);
-  tmp[5 * lid + 0] = derr, tmp[5 * lid + 1] = v2sum, tmp[5 * lid + 2] = v2max, tmp[5 * lid + 3] = rho_max;
-  tmp[5 * lid + 4] = comp;
-  ff_group_reduce(tmp, 5, (1 << 2) | (1 << 3), partial);
+  tmp[6 * lid + 0] = derr, tmp[6 * lid + 1] = v2sum, tmp[6 * lid + 2] = v2max, tmp[6 * lid + 3] = rho_max;
+  tmp[6 * lid + 4] = comp, tmp[6 * lid + 5] = p_max;
+  ff_group_reduce(tmp, 6, (1 << 2) | (1 << 3) | (1 << 5), partial);
 }
 
 // sum (1 - s_i) per group.

@@ -33,6 +33,9 @@ struct StepMetrics {
   // How the formed shape stands at the best rigid fit (metrics/pose.h).
   double tilt = 0.0;         // degrees from upright
   double base_height = 0.0;  // m, its lowest point above the floor
+  // Pa, the largest fluid pressure, held over the last steps (Simulation::step;
+  // drives DFSPH's substeps). Not a column.
+  double max_pressure = 0.0;
 };
 
 // The metrics as a table row: the column names (the CSV header of

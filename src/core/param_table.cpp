@@ -76,6 +76,9 @@ const std::vector<ParamInfo>& paramTable() {
        FF_FIELD(fluid.max_substeps)},
       {"fluid", "max_substep", T::Real, 1e-6, 1.0, false,
        "the longest substep (s), whatever the CFL number allows", FF_FIELD(fluid.max_substep)},
+      {"fluid", "pressure_cfl", T::Real, 0.0, 1.0, true,
+       "dfsph: CFL number on sqrt(p_max / rho0), the speed of the pressure force's own stiffness",
+       FF_FIELD(fluid.pressure_cfl)},
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
        FF_FIELD(control.radius)},

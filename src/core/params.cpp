@@ -16,11 +16,22 @@ float FluidParams::restSpacing() const {
   return std::cbrt(particle_mass / rest_density);
 }
 
-int FluidParams::substepsFor(double max_density, double max_speed) const {
-  (void)max_density;  // the sound speed of p = k (rho - rho0) does not depend on density
+int FluidParams::substepsFor(double max_pressure, double max_speed) const {
+  // WCSPH: the sound speed of p = k (rho - rho0), sqrt(k), adds to the speed.
   const double c = solver == PressureSolverKind::Wcsph ? std::sqrt(std::max(0.0, double(gas_constant))) : 0.0;
-  const double dt_cfl =
+  double dt_cfl =
       std::min(double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12), double(max_substep));
+  // DFSPH: its pressure force, V sum_j g (p_i + p_j) / rho0 r_ij, pushes a
+  // particle down the gradient of its neighbours' kernel sum with a stiffness
+  // proportional to p itself. No solve constrains that motion (the density
+  // is one number per particle, its motion three), so the step integrates it
+  // explicitly, and symplectic Euler holds it only while dt sqrt(p / rho0)
+  // stays below about 0.6 spacings (measured on a resting water column,
+  // docs/PRESETS.md): a CFL condition on the speed sqrt(p / rho0), sqrt(g h)
+  // under a column of height h, with the last step's highest pressure.
+  if (solver == PressureSolverKind::Dfsph && max_pressure > 0.0)
+    dt_cfl = std::min(dt_cfl, double(pressure_cfl) * double(smoothing_radius) /
+                                  std::sqrt(max_pressure / double(rest_density)));
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }

@@ -36,11 +36,16 @@ struct FluidParams {
   // Stability without tuning. Each step of `time_step` is split into as many
   // equal substeps as the CFL condition dt <= cfl * h / (c + v_max) asks for,
   // where c = sqrt(k) is the sound speed of p = k (rho - rho0) (0 for dfsph,
-  // which has no sound speed) and h the smoothing radius (up to max_substeps).
+  // which has pressure_cfl below instead) and h the smoothing radius (up to
+  // max_substeps).
   float cfl = 0.4f;
   int max_substeps = 16;
   // The longest substep (s), whatever the CFL condition allows.
   float max_substep = 0.1f;
+  // DFSPH: the substep also keeps dt <= pressure_cfl * h / sqrt(p_max / rho0),
+  // p_max the last step's highest pressure: the pressure force's own
+  // stiffness, which the solve leaves explicit (substepsFor, docs/PRESETS.md).
+  float pressure_cfl = 0.3f;
   // Last safeguard: no particle moves more than this fraction of h in one
   // substep (a velocity limit).
   float max_step_fraction = 0.5f;
@@ -56,8 +61,9 @@ struct FluidParams {
 
   float restVolume() const { return particle_mass / rest_density; }
   float restSpacing() const;  // cube root of the rest volume
-  // Substeps the CFL condition asks for, given the highest density and speed.
-  int substepsFor(double max_density, double max_speed) const;
+  // Substeps the CFL condition asks for, given the highest pressure (Pa)
+  // and speed of the last step.
+  int substepsFor(double max_pressure, double max_speed) const;
 };
 
 struct ControlParams {

@@ -166,13 +166,14 @@ StepMetrics CpuBackend::computeMetrics() {
   const FluidState& s = fluid_.s;
   const long n = long(s.size());
   const float rho0 = params_.fluid.rest_density, mass = params_.fluid.particle_mass;
-  double derr = 0.0, comp = 0.0, ke = 0.0, vmax2 = 0.0, rho_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : derr, comp, ke) reduction(max : vmax2, rho_max) \
+  double derr = 0.0, comp = 0.0, ke = 0.0, vmax2 = 0.0, rho_max = 0.0, p_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : derr, comp, ke) reduction(max : vmax2, rho_max, p_max) \
     if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     derr += std::fabs(fluid_.rho[i] - rho0) / rho0;
     comp += std::max(fluid_.rho[i] - rho0, 0.0f) / rho0;
     rho_max = std::max(rho_max, double(fluid_.rho[i]));
+    p_max = std::max(p_max, double(fluid_.p[i]));
     const double v2 = double(s.vx[i]) * s.vx[i] + double(s.vy[i]) * s.vy[i] + double(s.vz[i]) * s.vz[i];
     ke += 0.5 * mass * v2;
     vmax2 = std::max(vmax2, v2);
@@ -182,6 +183,7 @@ StepMetrics CpuBackend::computeMetrics() {
   m.kinetic_energy = ke;
   m.max_speed = std::sqrt(vmax2);
   m.max_density = rho_max;
+  m.max_pressure = p_max;
   const SolverStats st = solver_->take();
   m.solver_iterations = st.iterations;
   m.solver_capped = st.capped;

@@ -157,6 +157,11 @@ void OpenClBackend::uploadControl() {
   upload(q, c, d.rest_cx, cl.rest_cx), upload(q, c, d.rest_cy, cl.rest_cy),
       upload(q, c, d.rest_cz, cl.rest_cz);
   upload(q, c, d.of_start, cl.of_start), upload(q, c, d.of, cl.of);
+  if (s.blending()) {
+    upload(q, c, d.bx0, s.bx0), upload(q, c, d.by0, s.by0), upload(q, c, d.bz0, s.bz0);
+    upload(q, c, d.from_cx, cl.from_cx), upload(q, c, d.from_cy, cl.from_cy),
+        upload(q, c, d.from_cz, cl.from_cz);
+  }
   const std::vector<ff_quat> identity(nclusters_, FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
   upload(q, c, d.q, identity);
   for (DeviceBuffer* b : {&d.com_x, &d.com_y, &d.com_z, &d.ccv_x, &d.ccv_y, &d.ccv_z})
@@ -336,14 +341,15 @@ size_t OpenClBackend::memoryBytes() const {
     for (const DeviceBuffer* b : {&d.x[k], &d.y[k], &d.z[k], &d.vx[k], &d.vy[k], &d.vz[k], &d.id[k]})
       bytes += b->capacity();
   for (const DeviceBuffer* b :
-       {&d.rho,      &d.p,          &d.ax,        &d.ay,        &d.az,      &d.cx,         &d.cy,
-        &d.cz,       &d.cvx,        &d.cvy,       &d.cvz,       &d.x0,      &d.y0,         &d.z0,
-        &d.s,        &d.ux,         &d.uy,        &d.uz,        &d.gx,      &d.gy,         &d.gz,
-        &d.sx,       &d.sy,         &d.sz,        &d.ss,        &d.svx,     &d.svy,        &d.svz,
-        &d.cl_start, &d.cl_members, &d.rest_cx,   &d.rest_cy,   &d.rest_cz, &d.of_start,   &d.of,
-        &d.q,        &d.com_x,      &d.com_y,     &d.com_z,     &d.ccv_x,   &d.ccv_y,      &d.ccv_z,
-        &d.inside,   &d.rcentre,    &d.rseeds[0], &d.rseeds[1], &d.reach,   &d.controlled, &d.partial,
-        &d.clamps,   &d.bad,        &d.anchor_fix})
+       {&d.rho,      &d.p,          &d.ax,         &d.ay,        &d.az,      &d.cx,         &d.cy,
+        &d.cz,       &d.cvx,        &d.cvy,        &d.cvz,       &d.x0,      &d.y0,         &d.z0,
+        &d.s,        &d.ux,         &d.uy,         &d.uz,        &d.gx,      &d.gy,         &d.gz,
+        &d.sx,       &d.sy,         &d.sz,         &d.ss,        &d.svx,     &d.svy,        &d.svz,
+        &d.cl_start, &d.cl_members, &d.rest_cx,    &d.rest_cy,   &d.rest_cz, &d.of_start,   &d.of,
+        &d.q,        &d.com_x,      &d.com_y,      &d.com_z,     &d.ccv_x,   &d.ccv_y,      &d.ccv_z,
+        &d.inside,   &d.rcentre,    &d.rseeds[0],  &d.rseeds[1], &d.reach,   &d.controlled, &d.partial,
+        &d.clamps,   &d.bad,        &d.anchor_fix, &d.bx0,       &d.by0,     &d.bz0,        &d.from_cx,
+        &d.from_cy,  &d.from_cz})
     bytes += b->capacity();
   return bytes + d.fluid_h.memoryBytes() + d.control_r.memoryBytes() + d.grids.memoryBytes() +
          (dfsph_ ? dfsph_->memoryBytes() : 0);

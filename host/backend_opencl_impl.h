@@ -43,6 +43,9 @@ struct OpenClBackend::Impl {
   size_t rfield_cells = 0;  // cells of the field (rseeds[0]) after the last control forces
   // Clusters (CSR both ways) and their per-step frames.
   DeviceBuffer cl_start, cl_members, rest_cx, rest_cy, rest_cz, of_start, of;
+  // The rest-shape blend's start configuration and cluster start centres
+  // (ControlSet::bx0, Clusters::from_cx; uploaded only with a blend).
+  DeviceBuffer bx0, by0, bz0, from_cx, from_cy, from_cz;
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;
   DeviceBuffer anchor_fix;  // the anchor's correction: dv, dw, com (9 floats; ff_anchor.h)
 

@@ -36,6 +36,14 @@ void OpenClBackend::runShapeMatchStep(int tag) {
   const bool spread = !lanes_ && by_lane.pow2_local >= 8;
   ClKernel& frames = spread ? by_lane : d.sm_frames;
   const size_t local = by_lane.pow2_local, groups = (8 * nclusters_ + local - 1) / local;
+  // The blend weight of this step; without a blend the start configuration
+  // arguments are the reference's own buffers (never read at w = 1).
+  const float w = control_.blendWeight();
+  const bool bl = w < 1.0f;
+  const cl::Buffer &bx = bl ? d.bx0.get() : d.x0.get(), &by = bl ? d.by0.get() : d.y0.get(),
+                   &bz = bl ? d.bz0.get() : d.z0.get();
+  const cl::Buffer &fx = bl ? d.from_cx.get() : d.rest_cx.get(), &fy = bl ? d.from_cy.get() : d.rest_cy.get(),
+                   &fz = bl ? d.from_cz.get() : d.rest_cz.get();
   auto run = [&](const auto&... args) {
     if (spread)
       launchGroups(d.queue(), frames, groups, local, args..., cl::Local(local * 15 * sizeof(float)));
@@ -43,14 +51,14 @@ void OpenClBackend::runShapeMatchStep(int tag) {
       launch(d.queue(), frames, nclusters_, args...);
   };
   run(d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.x0.get(), d.y0.get(),
-      d.z0.get(), d.cl_start.get(), d.cl_members.get(), d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(),
-      cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.q.get(), d.com_x.get(), d.com_y.get(),
-      d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get());
+      d.z0.get(), bx, by, bz, w, d.cl_start.get(), d.cl_members.get(), d.rest_cx.get(), d.rest_cy.get(),
+      d.rest_cz.get(), fx, fy, fz, cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.q.get(),
+      d.com_x.get(), d.com_y.get(), d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get());
   launch(d.queue(), d.sm_velocities, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
-         d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_), d.of_start.get(), d.of.get(),
-         d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), d.q.get(), d.com_x.get(), d.com_y.get(),
-         d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(),
-         sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, d.gx.get(), d.gy.get(),
+         d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), bx, by, bz, w, cl_uint(nc_), d.of_start.get(),
+         d.of.get(), d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), fx, fy, fz, d.q.get(), d.com_x.get(),
+         d.com_y.get(), d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(),
+         d.uz.get(), sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, d.gx.get(), d.gy.get(),
          d.gz.get());
   // The anchor (ff_anchor.h), as Controller::shapeMatchStep.
   const float* g = params_.fluid.gravity;
@@ -68,6 +76,7 @@ void OpenClBackend::runShapeMatchStep(int tag) {
   launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
          d.cvz.get(), cl_uint(nc_), sm.time_step, cl_int(anchored ? 1 : 0), d.anchor_fix.get(), boxLo(box_),
          boxHi(box_), d.bad.get(), cl_int(tag));
+  if (bl) control_.blend_elapsed += double(sm.time_step);
 }
 
 }  // namespace ff

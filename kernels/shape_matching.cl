@@ -12,22 +12,35 @@
 #include "ff_control.h"
 #include "ff_rotation.h"
 
+// Cluster c's rest centre of mass at blend weight w (clusterRest in
+// src/control/shape_matching.cpp).
+ff_float3 sm_cluster_rest(__global const float* rest_cx, __global const float* rest_cy,
+                          __global const float* rest_cz, __global const float* from_cx,
+                          __global const float* from_cy, __global const float* from_cz, uint c, float w) {
+  const ff_float3 rc = FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]);
+  return w < 1.0f ? ff_blend_rest(FF_F3(from_cx[c], from_cy[c], from_cz[c]), rc, w) : rc;
+}
+
 // One work-item per cluster (the lanes kernels, for CPU devices): the lanes of
 // the cluster sums one after another, as the OpenMP backend runs them.
 __kernel void sm_cluster_frames(__global const float* x, __global const float* y, __global const float* z,
                                 __global const float* vx, __global const float* vy, __global const float* vz,
                                 __global const float* x0, __global const float* y0, __global const float* z0,
-                                __global const uint* cl_start, __global const uint* cl_members,
-                                __global const float* rest_cx, __global const float* rest_cy,
-                                __global const float* rest_cz, uint nc, int iterations, __global float4* q,
+                                __global const float* bx0, __global const float* by0,
+                                __global const float* bz0, float w, __global const uint* cl_start,
+                                __global const uint* cl_members, __global const float* rest_cx,
+                                __global const float* rest_cy, __global const float* rest_cz,
+                                __global const float* from_cx, __global const float* from_cy,
+                                __global const float* from_cz, uint nc, int iterations, __global float4* q,
                                 __global float* com_x, __global float* com_y, __global float* com_z,
                                 __global float* cv_x, __global float* cv_y, __global float* cv_z) {
   const uint c = get_global_id(0);
   if (c >= nc) return;
   const uint b = cl_start[c], e = cl_start[c + 1];
   const ff_float3 com = ff_cluster_mean3_of(x, y, z, cl_members, b, e);
-  const ff_float3 rc = FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]);
-  const ff_mat3 apq = ff_cluster_apq_of(x, y, z, x0, y0, z0, cl_members, b, e, com, rc);
+  const ff_float3 rc = sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w);
+  const ff_mat3 apq =
+      ff_cluster_apq_blend_of(x, y, z, x0, y0, z0, bx0, by0, bz0, w, cl_members, b, e, com, rc);
   q[c] = ff_extract_rotation(apq, q[c], iterations);
   com_x[c] = com.x, com_y[c] = com.y, com_z[c] = com.z;
   // clusterVelocities: the mean velocity of the members, before this step moves them.
@@ -44,10 +57,12 @@ __kernel void sm_cluster_frames(__global const float* x, __global const float* y
 __kernel void sm_cluster_frames_by_lane(
     __global const float* x, __global const float* y, __global const float* z, __global const float* vx,
     __global const float* vy, __global const float* vz, __global const float* x0, __global const float* y0,
-    __global const float* z0, __global const uint* cl_start, __global const uint* cl_members,
-    __global const float* rest_cx, __global const float* rest_cy, __global const float* rest_cz, uint nc,
-    int iterations, __global float4* q, __global float* com_x, __global float* com_y, __global float* com_z,
-    __global float* cv_x, __global float* cv_y, __global float* cv_z, __local float* tmp) {
+    __global const float* z0, __global const float* bx0, __global const float* by0, __global const float* bz0,
+    float w, __global const uint* cl_start, __global const uint* cl_members, __global const float* rest_cx,
+    __global const float* rest_cy, __global const float* rest_cz, __global const float* from_cx,
+    __global const float* from_cy, __global const float* from_cz, uint nc, int iterations, __global float4* q,
+    __global float* com_x, __global float* com_y, __global float* com_z, __global float* cv_x,
+    __global float* cv_y, __global float* cv_z, __local float* tmp) {
   const uint c = get_global_id(0) / 8u, lane = get_local_id(0) & 7u, lid = get_local_id(0);
   // The group's first lane of this cluster; positions sums at tmp[3 * lid],
   // A_pq and velocity sums at tmp[3 * size + 12 * lid].
@@ -64,8 +79,10 @@ __kernel void sm_cluster_frames_by_lane(
     lanes[l] = FF_F3(v[0], v[1], v[2]);
   }
   const ff_float3 com = c < nc ? ff_lanes_mean3(lanes, e - b) : FF_F3(0.0f, 0.0f, 0.0f);
-  const ff_float3 rc = c < nc ? FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]) : com;
-  const ff_mat3 a = ff_cluster_lane_apq(x, y, z, x0, y0, z0, cl_members, b, e, lane, com, rc);
+  const ff_float3 rc =
+      c < nc ? sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w) : com;
+  const ff_mat3 a =
+      ff_cluster_lane_apq_blend(x, y, z, x0, y0, z0, bx0, by0, bz0, w, cl_members, b, e, lane, com, rc);
   const ff_float3 vs = ff_cluster_lane_sum3(vx, vy, vz, cl_members, b, e, lane);
   const float mine[12] = {a.c0.x, a.c0.y, a.c0.z, a.c1.x, a.c1.y, a.c1.z,
                           a.c2.x, a.c2.y, a.c2.z, vs.x,   vs.y,   vs.z};
@@ -86,29 +103,30 @@ __kernel void sm_cluster_frames_by_lane(
 
 // Goals (kept for reading back), then the velocities after damping, feedback
 // and eq. 7 (Controller::shapeMatchStep's first loop).
-__kernel void sm_velocities(__global const float* x, __global const float* y, __global const float* z,
-                            __global float* vx, __global float* vy, __global float* vz,
-                            __global const float* x0, __global const float* y0, __global const float* z0,
-                            uint n, __global const uint* of_start, __global const uint* of,
-                            __global const float* rest_cx, __global const float* rest_cy,
-                            __global const float* rest_cz, __global const float4* q,
-                            __global const float* com_x, __global const float* com_y,
-                            __global const float* com_z, __global const float* cv_x,
-                            __global const float* cv_y, __global const float* cv_z, __global const float* ux,
-                            __global const float* uy, __global const float* uz, float h, float alpha,
-                            float feedback, float damping, __global float* gx, __global float* gy,
-                            __global float* gz) {
+__kernel void sm_velocities(
+    __global const float* x, __global const float* y, __global const float* z, __global float* vx,
+    __global float* vy, __global float* vz, __global const float* x0, __global const float* y0,
+    __global const float* z0, __global const float* bx0, __global const float* by0, __global const float* bz0,
+    float w, uint n, __global const uint* of_start, __global const uint* of, __global const float* rest_cx,
+    __global const float* rest_cy, __global const float* rest_cz, __global const float* from_cx,
+    __global const float* from_cy, __global const float* from_cz, __global const float4* q,
+    __global const float* com_x, __global const float* com_y, __global const float* com_z,
+    __global const float* cv_x, __global const float* cv_y, __global const float* cv_z,
+    __global const float* ux, __global const float* uy, __global const float* uz, float h, float alpha,
+    float feedback, float damping, __global float* gx, __global float* gy, __global float* gz) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const uint b = of_start[i], e = of_start[i + 1];
   // clusterGoals (eq. 8): the mean over the particle's clusters of R_c (x0 - c0_c) + c_c.
   ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
-  const ff_float3 p0 = FF_F3(x0[i], y0[i], z0[i]);
+  const ff_float3 p0 = w < 1.0f ? ff_blend_rest(FF_F3(bx0[i], by0[i], bz0[i]), FF_F3(x0[i], y0[i], z0[i]), w)
+                                : FF_F3(x0[i], y0[i], z0[i]);
   for (uint k = b; k < e; ++k) {
     const uint c = of[k];
     const ff_mat3 r = ff_quat_to_mat3(q[c]);
-    g += ff_mat3_mul_vec(r, p0 - FF_F3(rest_cx[c], rest_cy[c], rest_cz[c])) +
-         FF_F3(com_x[c], com_y[c], com_z[c]);
+    g +=
+        ff_mat3_mul_vec(r, p0 - sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w)) +
+        FF_F3(com_x[c], com_y[c], com_z[c]);
   }
   const float ginv = e > b ? 1.0f / (float)(e - b) : 0.0f;
   const ff_float3 goal = FF_F3(g.x * ginv, g.y * ginv, g.z * ginv);

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "control/placement.h"
 #include "cpu/backend_cpu.h"
 #include "gpu_tolerance.h"
 #include "host/backend_opencl.h"
@@ -142,21 +143,42 @@ TEST(OpenClShapeMatching, ClusterSumsAgreeOnBothVariantsAndTheCpuBackend) {
   control.clusters = windowClusters(control);
   deform(control);
   // Both with the anchor (ff_anchor.h: its sums over the whole set and its
-  // correction) and without it.
-  for (int anchor : {0, 1}) {
-    SCOPED_TRACE(anchor ? "anchored" : "not anchored");
+  // correction) and without it; and in the middle of a rest-shape blend
+  // (ControlSet::bx0, ff_blend_rest) from the reference jittered by up to
+  // 5 mm (so that the clusters still turn), at blend weight 7 / 27 (a third of
+  // the blend time).
+  for (int mode : {0, 1, 2}) {
+    const int anchor = mode == 1 ? 1 : 0;
+    const bool blend = mode == 2;
+    SCOPED_TRACE(blend ? "blending" : anchor ? "anchored" : "not anchored");
     ff::Params params = sim.scene().params;
     params.shape.anchor = anchor;
     ASSERT_NE(params.fluid.gravity[1], 0.0f);
+    ff::ControlSet ctl = control;
+    if (blend) {
+      std::mt19937 rng(7);
+      std::uniform_real_distribution<float> u(-0.005f, 0.005f);
+      for (size_t p = 0; p < ctl.size(); ++p)
+        ctl.x[p] = ctl.x0[p] + u(rng), ctl.y[p] = ctl.y0[p] + u(rng), ctl.z[p] = ctl.z0[p] + u(rng);
+      ff::startBlend(ctl, 1.0f, params.fluid.gravity);
+      ctl.x = control.x, ctl.y = control.y, ctl.z = control.z;
+      ASSERT_GT(ctl.blend_time, 0.0f);
+      ASSERT_EQ(ctl.clusters.from_cx.size(), kClusters);
+      ctl.blend_elapsed = ctl.blend_time / 3.0;
+      ASSERT_GT(ctl.blendWeight(), 0.25f);
+      ASSERT_LT(ctl.blendWeight(), 0.27f);
+    }
 
     ff::CpuBackend cpu(2);
-    step(cpu, params, scene, fluid, control);
+    step(cpu, params, scene, fluid, ctl);
     Result ref;
     ref.q = cpu.controller().clusterRotations();
     const ff::ControlSet& cs = cpu.controller().set();
     ref.v[0] = cpu.controller().goalX(), ref.v[1] = cpu.controller().goalY(),
     ref.v[2] = cpu.controller().goalZ();
     ref.v[3] = cs.x, ref.v[4] = cs.y, ref.v[5] = cs.z, ref.v[6] = cs.vx, ref.v[7] = cs.vy, ref.v[8] = cs.vz;
+    const double elapsed = cs.blend_elapsed;
+    EXPECT_EQ(elapsed, ctl.blend_elapsed + (blend ? double(params.shape.time_step) : 0.0));
     ASSERT_EQ(ref.q.size(), kClusters);
     // Every cluster turned (by about 0.4 rad, |w| = cos(0.2) = 0.980; a flat
     // cluster's warm-started iterations get part of the way): more than 0.09 rad.
@@ -169,7 +191,7 @@ TEST(OpenClShapeMatching, ClusterSumsAgreeOnBothVariantsAndTheCpuBackend) {
       const bool lanes = variant == ff::OpenClBackend::KernelVariant::Lanes;
       ASSERT_EQ(ocl->usesLanes(), lanes);
       const bool pocl = ff::roundsAsTheCpuBackend(ocl->deviceInfo());
-      step(*ocl, params, scene, fluid, control);
+      step(*ocl, params, scene, fluid, ctl);
       Result got;
       ocl->readClusterRotations(got.q);
       ocl->readGoals(got.v[0], got.v[1], got.v[2]);
@@ -177,6 +199,7 @@ TEST(OpenClShapeMatching, ClusterSumsAgreeOnBothVariantsAndTheCpuBackend) {
       ff::ControlFields of;
       ocl->readControl(oc, of);
       got.v[3] = oc.x, got.v[4] = oc.y, got.v[5] = oc.z, got.v[6] = oc.vx, got.v[7] = oc.vy, got.v[8] = oc.vz;
+      EXPECT_EQ(oc.blend_elapsed, elapsed);
       const char* names[9] = {"goal x", "goal y", "goal z", "x", "y", "z", "vx", "vy", "vz"};
       const char* which = lanes ? "lanes kernels" : "scalar kernels";
       ASSERT_EQ(got.q.size(), ref.q.size()) << which;

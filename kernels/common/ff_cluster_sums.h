@@ -38,18 +38,32 @@ FF_FN ff_float3 ff_cluster_lane_sum3(FF_GLOBAL const float* a, FF_GLOBAL const f
   return s;
 }
 
+/* Lane `lane`'s part of A_pq = sum_p (x_p - com) (x0_p - rc)^T, with the rest
+ * positions x0_p at blend weight w between the start configuration (bx, by,
+ * bz) and the reference (x0, y0, z0) (ff_blend_rest; w = 1: the reference). */
+FF_FN ff_mat3 ff_cluster_lane_apq_blend(FF_GLOBAL const float* x, FF_GLOBAL const float* y,
+                                        FF_GLOBAL const float* z, FF_GLOBAL const float* x0,
+                                        FF_GLOBAL const float* y0, FF_GLOBAL const float* z0,
+                                        FF_GLOBAL const float* bx, FF_GLOBAL const float* by,
+                                        FF_GLOBAL const float* bz, float w, FF_GLOBAL const uint* members,
+                                        uint first, uint end, uint lane, ff_float3 com, ff_float3 rc) {
+  ff_mat3 m = ff_mat3_zero();
+  for (uint k = first + lane; k < end; k += FF_CLUSTER_LANES) {
+    const uint p = members[k];
+    const ff_float3 r = w >= 1.0f ? FF_F3(x0[p], y0[p], z0[p])
+                                  : ff_blend_rest(FF_F3(bx[p], by[p], bz[p]), FF_F3(x0[p], y0[p], z0[p]), w);
+    m = ff_mat3_add_outer(m, FF_F3(x[p], y[p], z[p]) - com, r - rc);
+  }
+  return m;
+}
+
 /* Lane `lane`'s part of A_pq = sum_p (x_p - com) (x0_p - rc)^T. */
 FF_FN ff_mat3 ff_cluster_lane_apq(FF_GLOBAL const float* x, FF_GLOBAL const float* y,
                                   FF_GLOBAL const float* z, FF_GLOBAL const float* x0,
                                   FF_GLOBAL const float* y0, FF_GLOBAL const float* z0,
                                   FF_GLOBAL const uint* members, uint first, uint end, uint lane,
                                   ff_float3 com, ff_float3 rc) {
-  ff_mat3 m = ff_mat3_zero();
-  for (uint k = first + lane; k < end; k += FF_CLUSTER_LANES) {
-    const uint p = members[k];
-    m = ff_mat3_add_outer(m, FF_F3(x[p], y[p], z[p]) - com, FF_F3(x0[p], y0[p], z0[p]) - rc);
-  }
-  return m;
+  return ff_cluster_lane_apq_blend(x, y, z, x0, y0, z0, x0, y0, z0, 1.0f, members, first, end, lane, com, rc);
 }
 
 /* The 8 lane sums combined (ff_lane_sum8), component by component. */
@@ -86,15 +100,26 @@ FF_FN ff_float3 ff_cluster_mean3_of(FF_GLOBAL const float* a, FF_GLOBAL const fl
   return ff_lanes_mean3(v, end - first);
 }
 
+/* The whole cluster's A_pq, its lanes one after another (rest positions at
+ * blend weight w, as ff_cluster_lane_apq_blend). */
+FF_FN ff_mat3 ff_cluster_apq_blend_of(FF_GLOBAL const float* x, FF_GLOBAL const float* y,
+                                      FF_GLOBAL const float* z, FF_GLOBAL const float* x0,
+                                      FF_GLOBAL const float* y0, FF_GLOBAL const float* z0,
+                                      FF_GLOBAL const float* bx, FF_GLOBAL const float* by,
+                                      FF_GLOBAL const float* bz, float w, FF_GLOBAL const uint* members,
+                                      uint first, uint end, ff_float3 com, ff_float3 rc) {
+  ff_mat3 m[FF_CLUSTER_LANES];
+  for (uint l = 0; l < FF_CLUSTER_LANES; ++l)
+    m[l] = ff_cluster_lane_apq_blend(x, y, z, x0, y0, z0, bx, by, bz, w, members, first, end, l, com, rc);
+  return ff_lanes_total_mat3(m);
+}
+
 /* The whole cluster's A_pq, its lanes one after another. */
 FF_FN ff_mat3 ff_cluster_apq_of(FF_GLOBAL const float* x, FF_GLOBAL const float* y, FF_GLOBAL const float* z,
                                 FF_GLOBAL const float* x0, FF_GLOBAL const float* y0,
                                 FF_GLOBAL const float* z0, FF_GLOBAL const uint* members, uint first,
                                 uint end, ff_float3 com, ff_float3 rc) {
-  ff_mat3 m[FF_CLUSTER_LANES];
-  for (uint l = 0; l < FF_CLUSTER_LANES; ++l)
-    m[l] = ff_cluster_lane_apq(x, y, z, x0, y0, z0, members, first, end, l, com, rc);
-  return ff_lanes_total_mat3(m);
+  return ff_cluster_apq_blend_of(x, y, z, x0, y0, z0, x0, y0, z0, 1.0f, members, first, end, com, rc);
 }
 
 #endif /* FF_CLUSTER_SUMS_H */

@@ -102,6 +102,26 @@ FF_FN ff_float3 ff_shape_match_dv(ff_float3 goal, ff_float3 x, float alpha, floa
   return (goal - x) * (alpha / dt);
 }
 
+/* Rest-shape blend at a target change (docs/CONTROL_UNITS.md, "Rest-shape
+ * blend"): each control particle's rest position moves from its start
+ * configuration (where placement put it: the new shape spread over the fluid
+ * as it stands) to the new target's reference over the blend time T, by the
+ * smoothstep w = s^2 (3 - 2 s) of s = t / T. The shape-matching goals then
+ * move continuously, at most 1.5 / T times the distance a rest position
+ * travels per second. w is 1 (the reference alone) once t >= T or with no
+ * blend (T <= 0). */
+FF_FN float ff_blend_weight(float t, float blend_time) {
+  if (!(blend_time > 0.0f) || t >= blend_time) return 1.0f;
+  const float s = FF_FMAX(0.0f, t / blend_time);
+  return s * s * (3.0f - 2.0f * s);
+}
+
+/* The rest position at blend weight w, from the start configuration `from`
+ * to the reference `rest`: exactly `rest` at w = 1. */
+FF_FN ff_float3 ff_blend_rest(ff_float3 from, ff_float3 rest, float w) {
+  return w >= 1.0f ? rest : from + (rest - from) * w;
+}
+
 /* Recapture: fluid out of the control's reach is brought back into the
  * unfilled parts of the target from anywhere in the container
  * (docs/CONTROL_UNITS.md, "Recapture").

@@ -11,6 +11,8 @@
 #include <limits>
 #include <vector>
 
+#include "ff_control.h"
+
 namespace ff {
 
 // Overlapping clusters in compressed-row form.
@@ -18,6 +20,9 @@ struct Clusters {
   std::vector<uint32_t> start;                   // cluster c holds members[start[c] .. start[c+1])
   std::vector<uint32_t> members;                 // control-particle indices
   std::vector<float> rest_cx, rest_cy, rest_cz;  // rest centre of mass of each cluster
+  // Rest-shape blend: each cluster's centre of mass in the start
+  // configuration (ControlSet::bx0); empty with no blend.
+  std::vector<float> from_cx, from_cy, from_cz;
   // particle -> clusters, compressed-row: particle i is in of[of_start[i] .. of_start[i+1])
   std::vector<uint32_t> of_start;
   std::vector<uint32_t> of;
@@ -33,6 +38,18 @@ struct ControlSet {
   // or of another size than x: 1 for every particle (the controller and the
   // OpenCL backend fill it so).
   std::vector<float> radius_scale;
+  // Rest-shape blend at a target change (kernels/common/ff_control.h,
+  // ff_blend_weight): the start configuration each rest position moves from
+  // to (x0, y0, z0) over blend_time seconds of the shape-matching clock;
+  // blend_elapsed of them have run. Empty (and blend_time 0): no blend.
+  std::vector<float> bx0, by0, bz0;
+  float blend_time = 0.0f;
+  double blend_elapsed = 0.0;
+  // The blend weight of the next shape-matching step (1: the reference alone).
+  float blendWeight() const {
+    return !x.empty() && bx0.size() == x.size() ? ff_blend_weight(float(blend_elapsed), blend_time) : 1.0f;
+  }
+  bool blending() const { return blendWeight() < 1.0f; }
   Clusters clusters;
   float rest_cx = 0, rest_cy = 0, rest_cz = 0;  // rest centre of mass of the whole shape
   float particle_volume = 0;                    // rest volume of one control particle (the voxel volume)

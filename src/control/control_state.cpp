@@ -13,6 +13,8 @@ void Controller::saveState(StateWriter& w) const {
   w.vec(c.of_start), w.vec(c.of);
   w.pod(set_.rest_cx), w.pod(set_.rest_cy), w.pod(set_.rest_cz), w.pod(set_.particle_volume);
   w.pod(set_.anchor_x), w.pod(set_.anchor_y), w.pod(set_.anchor_z);
+  w.vec(set_.bx0), w.vec(set_.by0), w.vec(set_.bz0), w.vec(c.from_cx), w.vec(c.from_cy), w.vec(c.from_cz);
+  w.pod(set_.blend_time), w.pod(set_.blend_elapsed);
   w.vec(fields_.s), w.vec(fields_.ux), w.vec(fields_.uy), w.vec(fields_.uz);
   w.vec(q_);
   w.pod(clock_);
@@ -29,6 +31,8 @@ void Controller::loadState(StateReader& r) {
   r.vec(c.of_start), r.vec(c.of);
   r.pod(set.rest_cx), r.pod(set.rest_cy), r.pod(set.rest_cz), r.pod(set.particle_volume);
   r.pod(set.anchor_x), r.pod(set.anchor_y), r.pod(set.anchor_z);
+  r.vec(set.bx0), r.vec(set.by0), r.vec(set.bz0), r.vec(c.from_cx), r.vec(c.from_cy), r.vec(c.from_cz);
+  r.pod(set.blend_time), r.pod(set.blend_elapsed);
   // Every index must point inside its array: a corrupted file must not make
   // the shape-matching loops read out of bounds.
   const size_t n = set.x.size();
@@ -40,6 +44,12 @@ void Controller::loadState(StateReader& r) {
   for (float s : set.radius_scale) ok = ok && s > 0.0f && s <= 1.0f;
   const size_t nc = c.count();
   ok = ok && c.rest_cx.size() == nc && c.rest_cy.size() == nc && c.rest_cz.size() == nc;
+  // The blend's start configuration: none, or one per particle and cluster.
+  const bool blend = !set.bx0.empty();
+  ok = ok && set.by0.size() == set.bx0.size() && set.bz0.size() == set.bx0.size() &&
+       (!blend || set.bx0.size() == n);
+  ok = ok && c.from_cx.size() == (blend ? nc : 0) && c.from_cy.size() == c.from_cx.size() &&
+       c.from_cz.size() == c.from_cx.size();
   ok = ok && (c.start.empty() || (c.start.front() == 0 && c.start.back() == c.members.size()));
   for (size_t i = 1; ok && i < c.start.size(); ++i) ok = c.start[i - 1] <= c.start[i];
   for (uint32_t m : c.members) ok = ok && m < n;

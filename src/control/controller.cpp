@@ -361,6 +361,7 @@ bool Controller::shapeMatchStep() {
                ? 0
                : 1;
   }
+  if (set_.blending()) set_.blend_elapsed += double(h);
   return !bad;
 }
 

@@ -34,6 +34,56 @@ Standing standingFor(const float gravity[3]) {
   return s;
 }
 
+namespace {
+// The centre of mass of (x, y, z) over the particles, in double.
+void centre(const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
+            double c[3]) {
+  c[0] = c[1] = c[2] = 0.0;
+  for (size_t p = 0; p < x.size(); ++p) c[0] += x[p], c[1] += y[p], c[2] += z[p];
+  for (int d = 0; d < 3 && !x.empty(); ++d) c[d] /= double(x.size());
+}
+}  // namespace
+
+float blendTime(const ControlSet& set, float falls, const float gravity[3]) {
+  if (!(falls > 0.0f) || set.size() == 0) return 0.0f;
+  double b[3], r[3];
+  centre(set.x, set.y, set.z, b);
+  centre(set.x0, set.y0, set.z0, r);
+  double d2 = 0.0;
+  for (size_t p = 0; p < set.size(); ++p) {
+    const double dx = (double(set.x0[p]) - r[0]) - (double(set.x[p]) - b[0]);
+    const double dy = (double(set.y0[p]) - r[1]) - (double(set.y[p]) - b[1]);
+    const double dz = (double(set.z0[p]) - r[2]) - (double(set.z[p]) - b[2]);
+    d2 = std::max(d2, dx * dx + dy * dy + dz * dz);
+  }
+  double g = std::sqrt(double(gravity[0]) * gravity[0] + double(gravity[1]) * gravity[1] +
+                       double(gravity[2]) * gravity[2]);
+  if (!(g > 0.0)) g = 9.81;
+  return float(double(falls) * std::sqrt(2.0 * std::sqrt(d2) / g));
+}
+
+void startBlend(ControlSet& set, float falls, const float gravity[3]) {
+  const float t = blendTime(set, falls, gravity);
+  set.bx0.clear(), set.by0.clear(), set.bz0.clear();
+  Clusters& cl = set.clusters;
+  cl.from_cx.clear(), cl.from_cy.clear(), cl.from_cz.clear();
+  set.blend_time = 0.0f, set.blend_elapsed = 0.0;
+  if (!(t > 0.0f)) return;
+  set.bx0 = set.x, set.by0 = set.y, set.bz0 = set.z;
+  // Each cluster's start centre, summed as its rest centre (buildClusters).
+  for (size_t c = 0; c < cl.count(); ++c) {
+    double sx = 0, sy = 0, sz = 0;
+    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
+      const uint32_t p = cl.members[k];
+      sx += set.bx0[p], sy += set.by0[p], sz += set.bz0[p];
+    }
+    const double m = double(cl.start[c + 1] - cl.start[c]);
+    cl.from_cx.push_back(float(sx / m)), cl.from_cy.push_back(float(sy / m)),
+        cl.from_cz.push_back(float(sz / m));
+  }
+  set.blend_time = t;
+}
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
                                  const AdaptiveControl& adaptive, const Standing& standing) {

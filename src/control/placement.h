@@ -72,6 +72,16 @@ struct Standing {
 // side it points to (none for zero gravity).
 Standing standingFor(const float gravity[3]);
 
+// The rest-shape blend of a target change (params.shape_matching.blend,
+// docs/CONTROL_UNITS.md, "Rest-shape blend"): the start configuration is where
+// placement put the particles (set.x, y, z), so the goals start where the
+// particles are; the blend lasts `falls` times sqrt(2 d / g) with d the
+// largest distance a rest position moves relative to the shape's centre of
+// mass (g: gravity's magnitude, 9.81 m/s^2 when it is 0). falls <= 0 or
+// d = 0: no blend (the arrays stay empty).
+float blendTime(const ControlSet& set, float falls, const float gravity[3]);
+void startBlend(ControlSet& set, float falls, const float gravity[3]);
+
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,
                                  const AdaptiveControl& adaptive = AdaptiveControl(),

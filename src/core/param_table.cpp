@@ -133,6 +133,10 @@ const std::vector<ParamInfo>& paramTable() {
        "1: the control set's height and up axis stay where it was placed (relaxing back at the stiffness); "
        "0: they follow the fluid (the paper)",
        FF_FIELD(shape.anchor)},
+      {"shape_matching", "blend", T::Real, 0.0, 100.0, false,
+       "rest-shape blend at a target change, in fall times sqrt(2 d / g) over the largest distance d a "
+       "rest position moves (0 = off: the new rest shape at once)",
+       FF_FIELD(shape.blend)},
   };
   return table;
 }

@@ -134,6 +134,13 @@ struct ShapeMatchParams {
   // axes relax them back at eq. 7's stiffness); 0 = they follow the fluid,
   // as the paper (the default).
   int anchor = 0;
+  // Rest-shape blend at a target change (docs/CONTROL_UNITS.md, "Rest-shape
+  // blend"): the rest shape morphs from where placement puts the control
+  // particles (the new shape spread over the fluid as it stands) into the new
+  // target over `blend` times the time the fluid takes to fall the largest
+  // distance a rest position moves, sqrt(2 d / g). 0 = off (the paper: the
+  // new rest shape at once). The first target of a run is never blended.
+  float blend = 0.0f;
 
   // The most clusters one control particle belongs to: the lattice points
   // (multiples of the stride) within half_width voxels, per axis

@@ -17,8 +17,8 @@
 
 namespace ff {
 
-constexpr unsigned kCheckpointVersion =
-    6;  // 3: control radius scale; 4: the DFSPH substep; 5: the anchor; 6: the held pressure (pressure_cfl)
+constexpr unsigned kCheckpointVersion = 7;  // 3: control radius scale; 4: the DFSPH substep; 5: the anchor;
+                                            // 6: the held pressure (pressure_cfl); 7: rest-shape blend
 
 // Writes the run to `path` (through a temporary file and a rename, so an
 // interrupted write never leaves a half file under that name). Throws

@@ -110,6 +110,10 @@ Params waterParams() {
   // 0.03 m at the bunny's 3197 control particles (9.8 mm apart), and 0.0299 m
   // at the default voxel of 1.55 fluid spacings.
   p.control.radius_spacings = 3.06f;
+  // Target changes: the rest shape morphs into the new one over 8 fall times
+  // (docs/RESULTS.md, "Rest-shape blend at target changes": shorter blends
+  // still ring the control set's slow deformation mode).
+  p.shape.blend = 8.0f;
   return p;
 }
 

@@ -57,15 +57,6 @@ FF_FN ff_mat3 ff_cluster_lane_apq_blend(FF_GLOBAL const float* x, FF_GLOBAL cons
   return m;
 }
 
-/* Lane `lane`'s part of A_pq = sum_p (x_p - com) (x0_p - rc)^T. */
-FF_FN ff_mat3 ff_cluster_lane_apq(FF_GLOBAL const float* x, FF_GLOBAL const float* y,
-                                  FF_GLOBAL const float* z, FF_GLOBAL const float* x0,
-                                  FF_GLOBAL const float* y0, FF_GLOBAL const float* z0,
-                                  FF_GLOBAL const uint* members, uint first, uint end, uint lane,
-                                  ff_float3 com, ff_float3 rc) {
-  return ff_cluster_lane_apq_blend(x, y, z, x0, y0, z0, x0, y0, z0, 1.0f, members, first, end, lane, com, rc);
-}
-
 /* The 8 lane sums combined (ff_lane_sum8), component by component. */
 FF_FN ff_float3 ff_lanes_total3(const ff_float3 v[FF_CLUSTER_LANES]) {
   return FF_F3(ff_lane_sum8(v[0].x, v[1].x, v[2].x, v[3].x, v[4].x, v[5].x, v[6].x, v[7].x),

@@ -12,15 +12,6 @@
 #include "ff_control.h"
 #include "ff_rotation.h"
 
-// Cluster c's rest centre of mass at blend weight w (clusterRest in
-// src/control/shape_matching.cpp).
-ff_float3 sm_cluster_rest(__global const float* rest_cx, __global const float* rest_cy,
-                          __global const float* rest_cz, __global const float* from_cx,
-                          __global const float* from_cy, __global const float* from_cz, uint c, float w) {
-  const ff_float3 rc = FF_F3(rest_cx[c], rest_cy[c], rest_cz[c]);
-  return w < 1.0f ? ff_blend_rest(FF_F3(from_cx[c], from_cy[c], from_cz[c]), rc, w) : rc;
-}
-
 // One work-item per cluster (the lanes kernels, for CPU devices): the lanes of
 // the cluster sums one after another, as the OpenMP backend runs them.
 __kernel void sm_cluster_frames(__global const float* x, __global const float* y, __global const float* z,
@@ -38,7 +29,7 @@ __kernel void sm_cluster_frames(__global const float* x, __global const float* y
   if (c >= nc) return;
   const uint b = cl_start[c], e = cl_start[c + 1];
   const ff_float3 com = ff_cluster_mean3_of(x, y, z, cl_members, b, e);
-  const ff_float3 rc = sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w);
+  const ff_float3 rc = ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w);
   const ff_mat3 apq =
       ff_cluster_apq_blend_of(x, y, z, x0, y0, z0, bx0, by0, bz0, w, cl_members, b, e, com, rc);
   q[c] = ff_extract_rotation(apq, q[c], iterations);
@@ -80,7 +71,7 @@ __kernel void sm_cluster_frames_by_lane(
   }
   const ff_float3 com = c < nc ? ff_lanes_mean3(lanes, e - b) : FF_F3(0.0f, 0.0f, 0.0f);
   const ff_float3 rc =
-      c < nc ? sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w) : com;
+      c < nc ? ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w) : com;
   const ff_mat3 a =
       ff_cluster_lane_apq_blend(x, y, z, x0, y0, z0, bx0, by0, bz0, w, cl_members, b, e, lane, com, rc);
   const ff_float3 vs = ff_cluster_lane_sum3(vx, vy, vz, cl_members, b, e, lane);
@@ -119,14 +110,13 @@ __kernel void sm_velocities(
   const uint b = of_start[i], e = of_start[i + 1];
   // clusterGoals (eq. 8): the mean over the particle's clusters of R_c (x0 - c0_c) + c_c.
   ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
-  const ff_float3 p0 = w < 1.0f ? ff_blend_rest(FF_F3(bx0[i], by0[i], bz0[i]), FF_F3(x0[i], y0[i], z0[i]), w)
-                                : FF_F3(x0[i], y0[i], z0[i]);
+  const ff_float3 p0 = ff_blend_rest_at(bx0, by0, bz0, x0, y0, z0, i, w);
   for (uint k = b; k < e; ++k) {
     const uint c = of[k];
     const ff_mat3 r = ff_quat_to_mat3(q[c]);
-    g +=
-        ff_mat3_mul_vec(r, p0 - sm_cluster_rest(rest_cx, rest_cy, rest_cz, from_cx, from_cy, from_cz, c, w)) +
-        FF_F3(com_x[c], com_y[c], com_z[c]);
+    g += ff_mat3_mul_vec(r,
+                         p0 - ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w)) +
+         FF_F3(com_x[c], com_y[c], com_z[c]);
   }
   const float ginv = e > b ? 1.0f / (float)(e - b) : 0.0f;
   const ff_float3 goal = FF_F3(g.x * ginv, g.y * ginv, g.z * ginv);

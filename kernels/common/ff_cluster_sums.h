@@ -38,6 +38,18 @@ FF_FN ff_float3 ff_cluster_lane_sum3(FF_GLOBAL const float* a, FF_GLOBAL const f
   return s;
 }
 
+/* Entry k of a rest configuration at blend weight w (ff_blend_rest): from
+ * (fx, fy, fz)[k] (the start configuration) to (tx, ty, tz)[k] (the
+ * reference). The start arrays are read only while w < 1, so they may be
+ * empty (null) with no blend. Control particles' rest positions and their
+ * clusters' rest centres both go through it, on both backends. */
+FF_FN ff_float3 ff_blend_rest_at(FF_GLOBAL const float* fx, FF_GLOBAL const float* fy,
+                                 FF_GLOBAL const float* fz, FF_GLOBAL const float* tx,
+                                 FF_GLOBAL const float* ty, FF_GLOBAL const float* tz, uint k, float w) {
+  const ff_float3 t = FF_F3(tx[k], ty[k], tz[k]);
+  return w < 1.0f ? ff_blend_rest(FF_F3(fx[k], fy[k], fz[k]), t, w) : t;
+}
+
 /* Lane `lane`'s part of A_pq = sum_p (x_p - com) (x0_p - rc)^T, with the rest
  * positions x0_p at blend weight w between the start configuration (bx, by,
  * bz) and the reference (x0, y0, z0) (ff_blend_rest; w = 1: the reference). */
@@ -50,8 +62,7 @@ FF_FN ff_mat3 ff_cluster_lane_apq_blend(FF_GLOBAL const float* x, FF_GLOBAL cons
   ff_mat3 m = ff_mat3_zero();
   for (uint k = first + lane; k < end; k += FF_CLUSTER_LANES) {
     const uint p = members[k];
-    const ff_float3 r = w >= 1.0f ? FF_F3(x0[p], y0[p], z0[p])
-                                  : ff_blend_rest(FF_F3(bx[p], by[p], bz[p]), FF_F3(x0[p], y0[p], z0[p]), w);
+    const ff_float3 r = ff_blend_rest_at(bx, by, bz, x0, y0, z0, p, w);
     m = ff_mat3_add_outer(m, FF_F3(x[p], y[p], z[p]) - com, r - rc);
   }
   return m;

@@ -118,14 +118,10 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   cl.start.push_back(0);
   for (auto& m : kept) {
     std::sort(m.begin(), m.end());
-    double sx = 0, sy = 0, sz = 0;
-    for (uint32_t p : m) sx += set.x0[p], sy += set.y0[p], sz += set.z0[p];
-    cl.rest_cx.push_back(float(sx / double(m.size())));
-    cl.rest_cy.push_back(float(sy / double(m.size())));
-    cl.rest_cz.push_back(float(sz / double(m.size())));
     cl.members.insert(cl.members.end(), m.begin(), m.end());
     cl.start.push_back(uint32_t(cl.members.size()));
   }
+  clusterCentres(cl, set.x0, set.y0, set.z0, cl.rest_cx, cl.rest_cy, cl.rest_cz);
   // particle -> clusters
   cl.of_start.assign(n + 1, 0);
   for (uint32_t p : cl.members) ++cl.of_start[p + 1];
@@ -134,6 +130,21 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   std::vector<uint32_t> fill(cl.of_start.begin(), cl.of_start.end() - 1);
   for (size_t c = 0; c + 1 < cl.start.size(); ++c)
     for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) cl.of[fill[cl.members[k]]++] = uint32_t(c);
+}
+
+void clusterCentres(const Clusters& cl, const std::vector<float>& x, const std::vector<float>& y,
+                    const std::vector<float>& z, std::vector<float>& cx, std::vector<float>& cy,
+                    std::vector<float>& cz) {
+  cx.clear(), cy.clear(), cz.clear();
+  for (size_t c = 0; c < cl.count(); ++c) {
+    double sx = 0, sy = 0, sz = 0;
+    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
+      const uint32_t p = cl.members[k];
+      sx += x[p], sy += y[p], sz += z[p];
+    }
+    const double m = double(cl.start[c + 1] - cl.start[c]);
+    cx.push_back(float(sx / m)), cy.push_back(float(sy / m)), cz.push_back(float(sz / m));
+  }
 }
 
 }  // namespace ff

@@ -20,4 +20,11 @@ namespace ff {
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
                    const std::vector<int>& vk, int stride, int half_width, bool connected = false);
 
+// Each cluster's centre of mass over the points (x, y, z)[p], summed in
+// double in member order (the rest centres of buildClusters, the blend's
+// start centres of startBlend).
+void clusterCentres(const Clusters& cl, const std::vector<float>& x, const std::vector<float>& y,
+                    const std::vector<float>& z, std::vector<float>& cx, std::vector<float>& cy,
+                    std::vector<float>& cz);
+
 }  // namespace ff

@@ -61,13 +61,20 @@ struct ControlSet {
   size_t size() const { return x.size(); }
 };
 
+// The centre of mass of the points (x, y, z)[p], summed in double (0 for none).
+inline void centreOfMass(const std::vector<float>& x, const std::vector<float>& y,
+                         const std::vector<float>& z, double c[3]) {
+  c[0] = c[1] = c[2] = 0.0;
+  for (size_t p = 0; p < x.size(); ++p) c[0] += x[p], c[1] += y[p], c[2] += z[p];
+  for (int d = 0; d < 3 && !x.empty(); ++d) c[d] /= double(x.size());
+}
+
 // Sets an unset (non-finite) anchor to the set's centre of mass.
 inline void anchorAtCentre(ControlSet& s) {
   if (std::isfinite(s.anchor_x) && std::isfinite(s.anchor_y) && std::isfinite(s.anchor_z)) return;
-  double cx = 0, cy = 0, cz = 0;
-  for (size_t p = 0; p < s.size(); ++p) cx += s.x[p], cy += s.y[p], cz += s.z[p];
-  const double n = s.size() ? double(s.size()) : 1.0;
-  s.anchor_x = float(cx / n), s.anchor_y = float(cy / n), s.anchor_z = float(cz / n);
+  double c[3];
+  centreOfMass(s.x, s.y, s.z, c);
+  s.anchor_x = float(c[0]), s.anchor_y = float(c[1]), s.anchor_z = float(c[2]);
 }
 
 // Per-step values the controller computes for each control particle.

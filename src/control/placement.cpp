@@ -34,21 +34,11 @@ Standing standingFor(const float gravity[3]) {
   return s;
 }
 
-namespace {
-// The centre of mass of (x, y, z) over the particles, in double.
-void centre(const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
-            double c[3]) {
-  c[0] = c[1] = c[2] = 0.0;
-  for (size_t p = 0; p < x.size(); ++p) c[0] += x[p], c[1] += y[p], c[2] += z[p];
-  for (int d = 0; d < 3 && !x.empty(); ++d) c[d] /= double(x.size());
-}
-}  // namespace
-
 float blendTime(const ControlSet& set, float falls, const float gravity[3]) {
   if (!(falls > 0.0f) || set.size() == 0) return 0.0f;
   double b[3], r[3];
-  centre(set.x, set.y, set.z, b);
-  centre(set.x0, set.y0, set.z0, r);
+  centreOfMass(set.x, set.y, set.z, b);
+  centreOfMass(set.x0, set.y0, set.z0, r);
   double d2 = 0.0;
   for (size_t p = 0; p < set.size(); ++p) {
     const double dx = (double(set.x0[p]) - r[0]) - (double(set.x[p]) - b[0]);
@@ -71,16 +61,7 @@ void startBlend(ControlSet& set, float falls, const float gravity[3]) {
   if (!(t > 0.0f)) return;
   set.bx0 = set.x, set.by0 = set.y, set.bz0 = set.z;
   // Each cluster's start centre, summed as its rest centre (buildClusters).
-  for (size_t c = 0; c < cl.count(); ++c) {
-    double sx = 0, sy = 0, sz = 0;
-    for (uint32_t k = cl.start[c]; k < cl.start[c + 1]; ++k) {
-      const uint32_t p = cl.members[k];
-      sx += set.bx0[p], sy += set.by0[p], sz += set.bz0[p];
-    }
-    const double m = double(cl.start[c + 1] - cl.start[c]);
-    cl.from_cx.push_back(float(sx / m)), cl.from_cy.push_back(float(sy / m)),
-        cl.from_cz.push_back(float(sz / m));
-  }
+  clusterCentres(cl, set.bx0, set.by0, set.bz0, cl.from_cx, cl.from_cy, cl.from_cz);
   set.blend_time = t;
 }
 

@@ -5,24 +5,12 @@
 
 namespace ff {
 
-namespace {
-// Cluster c's rest centre of mass at blend weight w (the start centre to the
-// reference's, as its members' rest positions move).
-ff_float3 clusterRest(const Clusters& cl, size_t c, float w) {
-  const ff_float3 rc = FF_F3(cl.rest_cx[c], cl.rest_cy[c], cl.rest_cz[c]);
-  return w < 1.0f ? ff_blend_rest(FF_F3(cl.from_cx[c], cl.from_cy[c], cl.from_cz[c]), rc, w) : rc;
-}
-}  // namespace
-
 void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<float>& cx,
                    std::vector<float>& cy, std::vector<float>& cz, int iterations) {
   const Clusters& cl = set.clusters;
   const long nc = long(cl.count());
-  // The rest positions at the blend weight of this step (ff_blend_rest).
+  // The rest positions at the blend weight of this step (ff_blend_rest_at).
   const float w = set.blendWeight();
-  const bool bl = w < 1.0f;
-  const float *bx = bl ? set.bx0.data() : set.x0.data(), *by = bl ? set.by0.data() : set.y0.data(),
-              *bz = bl ? set.bz0.data() : set.z0.data();
   q.resize(size_t(nc), FF_Q(0.0f, 0.0f, 0.0f, 1.0f));
   cx.resize(size_t(nc)), cy.resize(size_t(nc)), cz.resize(size_t(nc));
 #pragma omp parallel for schedule(dynamic, 16)
@@ -31,10 +19,12 @@ void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<f
     const uint32_t b = cl.start[c], e = cl.start[c + 1];
     const ff_float3 com =
         ff_cluster_mean3_of(set.x.data(), set.y.data(), set.z.data(), cl.members.data(), b, e);
-    const ff_float3 rc = clusterRest(cl, size_t(c), w);
-    const ff_mat3 apq =
-        ff_cluster_apq_blend_of(set.x.data(), set.y.data(), set.z.data(), set.x0.data(), set.y0.data(),
-                                set.z0.data(), bx, by, bz, w, cl.members.data(), b, e, com, rc);
+    const ff_float3 rc =
+        ff_blend_rest_at(cl.from_cx.data(), cl.from_cy.data(), cl.from_cz.data(), cl.rest_cx.data(),
+                         cl.rest_cy.data(), cl.rest_cz.data(), uint32_t(c), w);
+    const ff_mat3 apq = ff_cluster_apq_blend_of(set.x.data(), set.y.data(), set.z.data(), set.x0.data(),
+                                                set.y0.data(), set.z0.data(), set.bx0.data(), set.by0.data(),
+                                                set.bz0.data(), w, cl.members.data(), b, e, com, rc);
     q[c] = ff_extract_rotation(apq, q[c], iterations);
     cx[c] = com.x, cy[c] = com.y, cz[c] = com.z;
   }
@@ -64,13 +54,15 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
   for (long p = 0; p < n; ++p) {
     ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
     const uint32_t b = cl.of_start[p], e = cl.of_start[p + 1];
-    const ff_float3 x0 = w < 1.0f ? ff_blend_rest(FF_F3(set.bx0[p], set.by0[p], set.bz0[p]),
-                                                  FF_F3(set.x0[p], set.y0[p], set.z0[p]), w)
-                                  : FF_F3(set.x0[p], set.y0[p], set.z0[p]);
+    const ff_float3 x0 = ff_blend_rest_at(set.bx0.data(), set.by0.data(), set.bz0.data(), set.x0.data(),
+                                          set.y0.data(), set.z0.data(), uint32_t(p), w);
     for (uint32_t k = b; k < e; ++k) {
       uint32_t c = cl.of[k];
       ff_mat3 r = ff_quat_to_mat3(q[c]);
-      g += ff_mat3_mul_vec(r, x0 - clusterRest(cl, c, w)) + FF_F3(cx[c], cy[c], cz[c]);
+      g += ff_mat3_mul_vec(
+               r, x0 - ff_blend_rest_at(cl.from_cx.data(), cl.from_cy.data(), cl.from_cz.data(),
+                                        cl.rest_cx.data(), cl.rest_cy.data(), cl.rest_cz.data(), c, w)) +
+           FF_F3(cx[c], cy[c], cz[c]);
     }
     const float inv = e > b ? 1.0f / float(e - b) : 0.0f;
     gx[p] = g.x * inv, gy[p] = g.y * inv, gz[p] = g.z * inv;

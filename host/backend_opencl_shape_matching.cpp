@@ -1,8 +1,8 @@
 // backend_opencl_shape_matching.cpp - the shape-matching phase of the OpenCL
 // backend (Controller::advance); the control's forces on the fluid are its
 // plug-in host/forces/control.cpp.
-#include <cmath>
 
+#include "ff_anchor.h"
 #include "host/backend_opencl.h"
 #include "host/backend_opencl_impl.h"
 #include "host/cl_errors.h"
@@ -62,16 +62,16 @@ void OpenClBackend::runShapeMatchStep(int tag) {
          d.gz.get());
   // The anchor (ff_anchor.h), as Controller::shapeMatchStep.
   const float* g = params_.fluid.gravity;
-  const float gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  const bool anchored = sm.anchor != 0 && gl > 0.0f;
+  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
+  const bool anchored = sm.anchor != 0 && ff_anchor_up(g, &up);
   d.anchor_fix.ensure(d.ctx.context(), 9 * sizeof(float));
   if (anchored) {
     const ControlSet& s = control_;
     launch(d.queue(), d.sm_anchor, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
            d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_),
            f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f), f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f),
-           f4(-g[0] / gl, -g[1] / gl, -g[2] / gl, 0.0f), sm.stiffness, sm.time_step, d.q.get(),
-           cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.anchor_fix.get());
+           f4(up.x, up.y, up.z, 0.0f), sm.stiffness, sm.time_step, d.q.get(), cl_uint(nclusters_),
+           cl_int(sm.rotation_iterations), d.anchor_fix.get());
   }
   launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
          d.cvz.get(), cl_uint(nc_), sm.time_step, cl_int(anchored ? 1 : 0), d.anchor_fix.get(), boxLo(box_),

@@ -27,6 +27,15 @@
 #include "ff_compat.h"
 #include "ff_rotation.h"
 
+/* "Up", against gravity g: 1 with the unit vector in *up, or 0 without
+ * gravity (no anchor then). */
+FF_FN int ff_anchor_up(const float g[3], ff_float3* up) {
+  const float gl = FF_SQRT(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (!(gl > 0.0f)) return 0;
+  *up = FF_F3(-g[0] / gl, -g[1] / gl, -g[2] / gl);
+  return 1;
+}
+
 /* Two unit vectors e1, e2 with (e1, e2, up) right-handed and orthonormal. */
 FF_FN void ff_anchor_basis(ff_float3 up, ff_float3* e1, ff_float3* e2) {
   const ff_float3 a = FF_FABS(up.x) < 0.9f ? FF_F3(1.0f, 0.0f, 0.0f) : FF_F3(0.0f, 0.0f, 1.0f);

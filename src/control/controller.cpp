@@ -329,15 +329,14 @@ bool Controller::shapeMatchStep() {
     set_.vx[i] = v.x, set_.vy[i] = v.y, set_.vz[i] = v.z;
   }
   // The anchor: the set's rigid motion along up and its tilt (ff_anchor.h).
-  const float gl = std::sqrt(g_[0] * g_[0] + g_[1] * g_[1] + g_[2] * g_[2]);
-  const bool anchored = sm_.anchor != 0 && gl > 0.0f;
+  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
+  const bool anchored = sm_.anchor != 0 && ff_anchor_up(g_, &up);
   ff_anchor_fix fix{};
   if (anchored)
     fix = ff_anchor_correction(set_.x.data(), set_.y.data(), set_.z.data(), set_.vx.data(), set_.vy.data(),
                                set_.vz.data(), set_.x0.data(), set_.y0.data(), set_.z0.data(), uint32_t(n),
                                FF_F3(set_.rest_cx, set_.rest_cy, set_.rest_cz),
-                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z),
-                               FF_F3(-g_[0] / gl, -g_[1] / gl, -g_[2] / gl), alpha, h,
+                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, alpha, h,
                                q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], sm_.rotation_iterations);
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -93,6 +94,78 @@ TEST(DfsphKernel, WallGradientIsTheGradientOfTheWallShareInACorner) {
       EXPECT_NEAR(grad[a], fd, 0.01 * std::fabs(ff_cubic_wall_slope(0.0f, inv_h))) << a;
     }
   }
+}
+
+// The solver's remainder from the density phase's S(x) and grad S(x)
+// (ff_dfsph_factor_share, ff_dfsph_wall_near, ff_dfsph_wall_remainder_from)
+// is ff_dfsph_wall_remainder bit for bit, near a corner and in the bulk, and
+// is 0 exactly where neither x nor x + dt u is within H / 2 of a wall.
+TEST(DfsphKernel, WallRemainderFromTheDensityPhaseShareIsTheSameBits) {
+  const float H = 0.0833f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
+  const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f}, a[3] = {0.0f, 0.0f, 0.0f};
+  unsigned seed = 12345u;
+  auto uniform = [&seed](float l, float h) {
+    seed = seed * 1664525u + 1013904223u;
+    return l + (h - l) * float(seed >> 8) / float(1u << 24);
+  };
+  int near = 0, zero = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const float pos[3] = {uniform(-0.01f, 0.15f), uniform(-0.01f, 0.6f), uniform(0.25f, 0.41f)};
+    const float u[3] = {uniform(-3.0f, 3.0f), uniform(-3.0f, 3.0f), uniform(-3.0f, 3.0f)}, dt = 0.004f;
+    float rho_hat, wg[3], share, p1[3];
+    ff_dfsph_factor_share(pos, lo, hi, sp, H, inv_h, vol, 1.0f, a, 1.0f, 0.0f, &rho_hat, wg, &share);
+    const float want = ff_dfsph_wall_remainder(pos, u, dt, lo, hi, sp, vol, H, inv_h);
+    if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) {
+      ++near;
+      const float got = ff_dfsph_wall_remainder_from(p1, share, wg, u, dt, lo, hi, sp, vol, H, inv_h);
+      ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << t << ": " << got << " " << want;
+    } else {
+      ++zero;
+      ASSERT_EQ(want, 0.0f) << t;
+      // Neither end within H / 2 of a wall: no wall reaches either.
+      float g[3];
+      EXPECT_EQ(ff_dfsph_wall(pos, lo, hi, sp, vol, H, inv_h, g), 0.0f);
+    }
+  }
+  EXPECT_GT(near, 500);
+  EXPECT_GT(zero, 500);
+}
+
+// FF_FMIN / FF_FMAX are inline in C++ (kernels/common/ff_compat.h) and must
+// give what libm's fminf / fmaxf give, bit for bit: NaN operands, signed
+// zeros, infinities, subnormals and ordinary values.
+TEST(DfsphKernel, InlineMinAndMaxAreLibmsBitForBit) {
+  const float nan = std::nanf(""), inf = INFINITY, sub = 1e-41f;
+  std::vector<float> v = {0.0f, -0.0f, nan, -nan, inf, -inf, sub, -sub, 1.0f, -1.0f, 0.5f, 3.0e38f, -2.5f};
+  unsigned seed = 7u;
+  for (int i = 0; i < 200; ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    uint32_t bits = seed;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    v.push_back(f);
+  }
+  auto bitsOf = [](float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+  };
+  for (float x : v)
+    for (float y : v) {
+      volatile float vx = x, vy = y;  // keep libm's functions from being folded
+      const float lmin = std::fmin(float(vx), float(vy)), lmax = std::fmax(float(vx), float(vy));
+      const float gmin = FF_FMIN(x, y), gmax = FF_FMAX(x, y);
+      if (std::isnan(lmin)) {
+        EXPECT_TRUE(std::isnan(gmin)) << x << " " << y;
+      } else {
+        EXPECT_EQ(bitsOf(gmin), bitsOf(lmin)) << x << " " << y;
+      }
+      if (std::isnan(lmax)) {
+        EXPECT_TRUE(std::isnan(gmax)) << x << " " << y;
+      } else {
+        EXPECT_EQ(bitsOf(gmax), bitsOf(lmax)) << x << " " << y;
+      }
+    }
 }
 
 TEST(DfsphKernel, WallSupportIsTheMissingShareOfTheGradientNormalisation) {

@@ -73,8 +73,18 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
 #define FF_FMOD(a, b) std::fmod((float)(a), (float)(b))
 #define FF_FABS(a) std::fabs((float)(a))
 #define FF_FLOOR(a) std::floor((float)(a))
-#define FF_FMIN(a, b) std::fmin((float)(a), (float)(b))
-#define FF_FMAX(a, b) std::fmax((float)(a), (float)(b))
+/* fmin / fmax inline: std::fmin / std::fmax are calls into libm on x86-64
+ * (minss / maxss do not treat NaN as C does). These return what glibc's do,
+ * bit for bit: the non-NaN operand where one is NaN, the first where both are
+ * equal (so also the first of +0 and -0). */
+inline float ff_fmin_c(float a, float b) {
+  return (a <= b || b != b) ? a : b;
+}
+inline float ff_fmax_c(float a, float b) {
+  return (a >= b || b != b) ? a : b;
+}
+#define FF_FMIN(a, b) ff_fmin_c((float)(a), (float)(b))
+#define FF_FMAX(a, b) ff_fmax_c((float)(a), (float)(b))
 #define FF_ZERO_OF(T) (T{})
 #define FF_GENERIC(def, name) \
   template <class FF_T>       \

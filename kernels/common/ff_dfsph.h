@@ -222,10 +222,11 @@ FF_FN void ff_dfsph_wall_support(const float* pos, const float* lo, const float*
  * a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2. Gives rho_hat, the wall's
  * gradient wgrad, and returns alpha_i (0 where the diagonal is below eps:
  * nothing around to push against). */
-FF_FN float ff_dfsph_factor(const float* pos, const float* lo, const float* hi, float spacing, float H,
-                            float inv_h, float vol, float w, const float* a, float ssq, float eps,
-                            float* rho_hat, float* wgrad) {
+FF_FN float ff_dfsph_factor_share(const float* pos, const float* lo, const float* hi, float spacing, float H,
+                                  float inv_h, float vol, float w, const float* a, float ssq, float eps,
+                                  float* rho_hat, float* wgrad, float* wall_share) {
   const float share = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, wgrad);
+  *wall_share = share;
   *rho_hat = vol * w + share;
   float d = vol * vol * ssq;
   for (int c = 0; c < 3; ++c) {
@@ -233,6 +234,14 @@ FF_FN float ff_dfsph_factor(const float* pos, const float* lo, const float* hi, 
     d += gc * gc;
   }
   return d > eps ? 1.0f / d : 0.0f;
+}
+
+/* ff_dfsph_factor_share without the walls' share S(x_i). */
+FF_FN float ff_dfsph_factor(const float* pos, const float* lo, const float* hi, float spacing, float H,
+                            float inv_h, float vol, float w, const float* a, float ssq, float eps,
+                            float* rho_hat, float* wgrad) {
+  float share;
+  return ff_dfsph_factor_share(pos, lo, hi, spacing, H, inv_h, vol, w, a, ssq, eps, rho_hat, wgrad, &share);
 }
 
 /* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall. */
@@ -261,21 +270,42 @@ FF_FN float ff_dfsph_density_source(float rho_hat, float rate, float dt) {
  * particle squeezed by 5-22 % sat 0.15-0.5 spacings from a wall, moving into
  * it, and the squeeze stayed at a density tolerance of 1e-6 (the solve had
  * converged; its prediction was wrong). Exactly 0 where neither x nor
- * x + dt u is within H / 2 of a wall. */
-FF_FN float ff_dfsph_wall_remainder(const float* pos, const float* u, float dt, const float* lo,
-                                    const float* hi, float spacing, float vol, float H, float inv_h) {
-  float p1[3];
+ * x + dt u is within H / 2 of a wall (ff_dfsph_wall_near).
+ * ff_dfsph_wall_remainder below; the OpenMP solver calls its parts with the
+ * S(x) and grad S(x) of its density phase.
+ *
+ * Whether x = pos or x + dt u (set into p1) is within H / 2 of a wall. */
+FF_FN int ff_dfsph_wall_near(const float* pos, const float* u, float dt, const float* lo, const float* hi,
+                             float H, float* p1) {
   int near = 0;
   for (int a = 0; a < 3; ++a) {
     p1[a] = pos[a] + dt * u[a];
     const float d0 = FF_FMIN(pos[a] - lo[a], hi[a] - pos[a]), d1 = FF_FMIN(p1[a] - lo[a], hi[a] - p1[a]);
     near |= (d0 < 0.5f * H) | (d1 < 0.5f * H);
   }
-  if (!near) return 0.0f;
-  float g0[3], g1[3];
-  const float s0 = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, g0);
+  return near;
+}
+
+/* The remainder from the share s0 and gradient g0 at x (ff_dfsph_wall's,
+ * which the density phase has already computed for this substep) and
+ * p1 = x + dt u (ff_dfsph_wall_near): the same bits as
+ * ff_dfsph_wall_remainder, with one wall evaluation instead of two. */
+FF_FN float ff_dfsph_wall_remainder_from(const float* p1, float s0, const float* g0, const float* u, float dt,
+                                         const float* lo, const float* hi, float spacing, float vol, float H,
+                                         float inv_h) {
+  float g1[3];
   const float s1 = ff_dfsph_wall(p1, lo, hi, spacing, vol, H, inv_h, g1);
   return s1 - s0 - dt * (g0[0] * u[0] + g0[1] * u[1] + g0[2] * u[2]);
+}
+
+/* S(x + dt u) - S(x) - dt grad S(x).u as described above. */
+FF_FN float ff_dfsph_wall_remainder(const float* pos, const float* u, float dt, const float* lo,
+                                    const float* hi, float spacing, float vol, float H, float inv_h) {
+  float p1[3];
+  if (!ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) return 0.0f;
+  float g0[3];
+  const float s0 = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, g0);
+  return ff_dfsph_wall_remainder_from(p1, s0, g0, u, dt, lo, hi, spacing, vol, H, inv_h);
 }
 
 /* The compression rate the divergence solve removes: only compressing flow,

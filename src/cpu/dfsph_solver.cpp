@@ -137,7 +137,7 @@ void box(const ContainerDesc& c, float* lo, float* hi) {
 bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& c) {
   const size_t n = f.size();
   f.rho.resize(n), f.p.resize(n);
-  for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_}) a->resize(n);
+  for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_}) a->resize(n);
   bulk_.resize(n);
   if (kd_.size() != n) kd_.assign(n, 0.0f), kv_.assign(n, 0.0f);
   const Kernel kr(p.smoothing_radius);
@@ -165,8 +165,8 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
       const size_t l = i - b;
       const float pos[3] = {s.x[i], s.y[i], s.z[i]}, a[3] = {sums[8 + l], sums[16 + l], sums[24 + l]};
       float rho_hat, wg[3];
-      alpha_[i] = ff_dfsph_factor(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a, sums[32 + l],
-                                  eps, &rho_hat, wg);
+      alpha_[i] = ff_dfsph_factor_share(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a,
+                                        sums[32 + l], eps, &rho_hat, wg, &wall_[i]);
       wgx_[i] = wg[0], wgy_[i] = wg[1], wgz_[i] = wg[2];
       f.rho[i] = rho0 * rho_hat;
       const float share = rho_hat - vol * sums[l];  // the walls' share
@@ -193,8 +193,13 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
       const float rate = ff_dfsph_rate(rs[i - b], vol_, u, wg);
       if (density) {
         // The density after dt, with the walls' share at x + dt u.
+        // ff_dfsph_wall_remainder with S(x) and grad S(x) of the density phase.
         const float pos[3] = {s.x[i], s.y[i], s.z[i]};
-        const float rem = ff_dfsph_wall_remainder(pos, u, dt, lo_, hi_, vol_spacing_, vol_, H, inv_h);
+        float p1[3];
+        const float rem = ff_dfsph_wall_near(pos, u, dt, lo_, hi_, H, p1)
+                              ? ff_dfsph_wall_remainder_from(p1, wall_[i], wg, u, dt, lo_, hi_, vol_spacing_,
+                                                             vol_, H, inv_h)
+                              : 0.0f;
         b_[i] = ff_dfsph_density_source(f.rho[i] * inv_rho0 + rem, rate, dt);
       } else {
         b_[i] = ff_dfsph_divergence_source(rate, bulk_[i]);
@@ -331,7 +336,8 @@ void DfsphSolver::loadState(StateReader& r, size_t n) {
 
 size_t DfsphSolver::memoryBytes() const {
   size_t floats = 0;
-  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &kd_, &kv_, &b_, &inc_, &ux_, &uy_, &uz_, &scratch_})
+  for (const auto* v :
+       {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &kd_, &kv_, &b_, &inc_, &ux_, &uy_, &uz_, &scratch_})
     floats += v->capacity();
   return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
 }

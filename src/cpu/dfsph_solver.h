@@ -49,6 +49,7 @@ class DfsphSolver : public PressureSolver {
   float vol_ = 0.0f;                            // the lattice volume V (ff_dfsph_lattice_volume)
   float vol_spacing_ = 0.0f, vol_h_ = 0.0f;     // what vol_ was computed for
   std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
+  std::vector<float> wall_;                     // and the walls' density shares S(x_i)
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   bool cache_current_ = false;                  // from the density phase until the grid phase reorders

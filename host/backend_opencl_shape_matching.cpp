@@ -2,6 +2,7 @@
 // backend (Controller::advance); the control's forces on the fluid are its
 // plug-in host/forces/control.cpp.
 
+#include "control/shape_match_args.h"
 #include "ff_anchor.h"
 #include "host/backend_opencl.h"
 #include "host/backend_opencl_impl.h"
@@ -44,6 +45,11 @@ void OpenClBackend::runShapeMatchStep(int tag) {
                    &bz = bl ? d.bz0.get() : d.z0.get();
   const cl::Buffer &fx = bl ? d.from_cx.get() : d.rest_cx.get(), &fy = bl ? d.from_cy.get() : d.rest_cy.get(),
                    &fz = bl ? d.from_cz.get() : d.rest_cz.get();
+  // The anchor acts (ff_anchor.h), as Controller::shapeMatchStep.
+  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
+  const bool anchored = sm.anchor != 0 && ff_anchor_up(params_.fluid.gravity, &up);
+  const FfShapeMatchArgs A = shapeMatchArgs(sm, params_.control.feedback, cl_uint(nc_), cl_uint(nclusters_),
+                                            w, anchored, boxMin(box_), boxMax(box_), tag);
   auto run = [&](const auto&... args) {
     if (spread)
       launchGroups(d.queue(), frames, groups, local, args..., cl::Local(local * 15 * sizeof(float)));
@@ -51,31 +57,24 @@ void OpenClBackend::runShapeMatchStep(int tag) {
       launch(d.queue(), frames, nclusters_, args...);
   };
   run(d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(), d.cvz.get(), d.x0.get(), d.y0.get(),
-      d.z0.get(), bx, by, bz, w, d.cl_start.get(), d.cl_members.get(), d.rest_cx.get(), d.rest_cy.get(),
-      d.rest_cz.get(), fx, fy, fz, cl_uint(nclusters_), cl_int(sm.rotation_iterations), d.q.get(),
-      d.com_x.get(), d.com_y.get(), d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get());
+      d.z0.get(), bx, by, bz, d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), fx, fy, fz, d.cl_start.get(),
+      d.cl_members.get(), A, d.q.get(), d.com_x.get(), d.com_y.get(), d.com_z.get(), d.ccv_x.get(),
+      d.ccv_y.get(), d.ccv_z.get());
   launch(d.queue(), d.sm_velocities, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
-         d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), bx, by, bz, w, cl_uint(nc_), d.of_start.get(),
-         d.of.get(), d.rest_cx.get(), d.rest_cy.get(), d.rest_cz.get(), fx, fy, fz, d.q.get(), d.com_x.get(),
-         d.com_y.get(), d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(),
-         d.uz.get(), sm.time_step, sm.stiffness, params_.control.feedback, sm.damping, d.gx.get(), d.gy.get(),
-         d.gz.get());
-  // The anchor (ff_anchor.h), as Controller::shapeMatchStep.
-  const float* g = params_.fluid.gravity;
-  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
-  const bool anchored = sm.anchor != 0 && ff_anchor_up(g, &up);
+         d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), bx, by, bz, d.rest_cx.get(), d.rest_cy.get(),
+         d.rest_cz.get(), fx, fy, fz, d.of_start.get(), d.of.get(), d.q.get(), d.com_x.get(), d.com_y.get(),
+         d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(), A,
+         d.gx.get(), d.gy.get(), d.gz.get());
   d.anchor_fix.ensure(d.ctx.context(), 9 * sizeof(float));
   if (anchored) {
     const ControlSet& s = control_;
     launch(d.queue(), d.sm_anchor, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
-           d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), cl_uint(nc_),
-           f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f), f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f),
-           f4(up.x, up.y, up.z, 0.0f), sm.stiffness, sm.time_step, d.q.get(), cl_uint(nclusters_),
-           cl_int(sm.rotation_iterations), d.anchor_fix.get());
+           d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f),
+           f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f), f4(up.x, up.y, up.z, 0.0f), A, d.q.get(),
+           d.anchor_fix.get());
   }
   launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
-         d.cvz.get(), cl_uint(nc_), sm.time_step, cl_int(anchored ? 1 : 0), d.anchor_fix.get(), boxLo(box_),
-         boxHi(box_), d.bad.get(), cl_int(tag));
+         d.cvz.get(), A, d.anchor_fix.get(), d.bad.get());
   if (bl) control_.blend_elapsed += double(sm.time_step);
 }
 

@@ -11,31 +11,25 @@
 #include "ff_cluster_sums.h"
 #include "ff_control.h"
 #include "ff_rotation.h"
+#include "ff_shape_match.h"
 
 // One work-item per cluster (the lanes kernels, for CPU devices): the lanes of
 // the cluster sums one after another, as the OpenMP backend runs them.
 __kernel void sm_cluster_frames(__global const float* x, __global const float* y, __global const float* z,
                                 __global const float* vx, __global const float* vy, __global const float* vz,
-                                __global const float* x0, __global const float* y0, __global const float* z0,
-                                __global const float* bx0, __global const float* by0,
-                                __global const float* bz0, float w, __global const uint* cl_start,
-                                __global const uint* cl_members, __global const float* rest_cx,
-                                __global const float* rest_cy, __global const float* rest_cz,
-                                __global const float* from_cx, __global const float* from_cy,
-                                __global const float* from_cz, uint nc, int iterations, __global float4* q,
+                                FF_SM_REST_PARAMS, __global const uint* cl_start,
+                                __global const uint* cl_members, FfShapeMatchArgs A, __global float4* q,
                                 __global float* com_x, __global float* com_y, __global float* com_z,
                                 __global float* cv_x, __global float* cv_y, __global float* cv_z) {
   const uint c = get_global_id(0);
-  if (c >= nc) return;
-  const uint b = cl_start[c], e = cl_start[c + 1];
-  const ff_float3 com = ff_cluster_mean3_of(x, y, z, cl_members, b, e);
-  const ff_float3 rc = ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w);
-  const ff_mat3 apq =
-      ff_cluster_apq_blend_of(x, y, z, x0, y0, z0, bx0, by0, bz0, w, cl_members, b, e, com, rc);
-  q[c] = ff_extract_rotation(apq, q[c], iterations);
+  if (c >= A.nclusters) return;
+  ff_quat qc = q[c];
+  const ff_float3 com = ff_sm_frame(x, y, z, x0, y0, z0, bx0, by0, bz0, rest_cx, rest_cy, rest_cz, from_cx,
+                                    from_cy, from_cz, cl_start, cl_members, c, A.w, A.iterations, &qc);
+  q[c] = qc;
   com_x[c] = com.x, com_y[c] = com.y, com_z[c] = com.z;
   // clusterVelocities: the mean velocity of the members, before this step moves them.
-  const ff_float3 cv = ff_cluster_mean3_of(vx, vy, vz, cl_members, b, e);
+  const ff_float3 cv = ff_cluster_mean3_of(vx, vy, vz, cl_members, cl_start[c], cl_start[c + 1]);
   cv_x[c] = cv.x, cv_y[c] = cv.y, cv_z[c] = cv.z;
 }
 
@@ -45,16 +39,16 @@ __kernel void sm_cluster_frames(__global const float* x, __global const float* y
 // the group combines the 8 lanes in local memory by ff_lane_sum8, every lane
 // takes the centre of mass from them, and lane 0 extracts the rotation. Work-
 // groups of a multiple of 8 work-items; `tmp` holds 15 floats per work-item.
-__kernel void sm_cluster_frames_by_lane(
-    __global const float* x, __global const float* y, __global const float* z, __global const float* vx,
-    __global const float* vy, __global const float* vz, __global const float* x0, __global const float* y0,
-    __global const float* z0, __global const float* bx0, __global const float* by0, __global const float* bz0,
-    float w, __global const uint* cl_start, __global const uint* cl_members, __global const float* rest_cx,
-    __global const float* rest_cy, __global const float* rest_cz, __global const float* from_cx,
-    __global const float* from_cy, __global const float* from_cz, uint nc, int iterations, __global float4* q,
-    __global float* com_x, __global float* com_y, __global float* com_z, __global float* cv_x,
-    __global float* cv_y, __global float* cv_z, __local float* tmp) {
+__kernel void sm_cluster_frames_by_lane(__global const float* x, __global const float* y,
+                                        __global const float* z, __global const float* vx,
+                                        __global const float* vy, __global const float* vz, FF_SM_REST_PARAMS,
+                                        __global const uint* cl_start, __global const uint* cl_members,
+                                        FfShapeMatchArgs A, __global float4* q, __global float* com_x,
+                                        __global float* com_y, __global float* com_z, __global float* cv_x,
+                                        __global float* cv_y, __global float* cv_z, __local float* tmp) {
   const uint c = get_global_id(0) / 8u, lane = get_local_id(0) & 7u, lid = get_local_id(0);
+  const uint nc = A.nclusters;
+  const float w = A.w;
   // The group's first lane of this cluster; positions sums at tmp[3 * lid],
   // A_pq and velocity sums at tmp[3 * size + 12 * lid].
   const uint l0 = lid - lane, size = get_local_size(0);
@@ -86,7 +80,7 @@ __kernel void sm_cluster_frames_by_lane(
     m[l].c0 = FF_F3(v[0], v[1], v[2]), m[l].c1 = FF_F3(v[3], v[4], v[5]), m[l].c2 = FF_F3(v[6], v[7], v[8]);
     lanes[l] = FF_F3(v[9], v[10], v[11]);
   }
-  q[c] = ff_extract_rotation(ff_lanes_total_mat3(m), q[c], iterations);
+  q[c] = ff_extract_rotation(ff_lanes_total_mat3(m), q[c], A.iterations);
   com_x[c] = com.x, com_y[c] = com.y, com_z[c] = com.z;
   const ff_float3 cv = ff_lanes_mean3(lanes, e - b);
   cv_x[c] = cv.x, cv_y[c] = cv.y, cv_z[c] = cv.z;
@@ -94,45 +88,21 @@ __kernel void sm_cluster_frames_by_lane(
 
 // Goals (kept for reading back), then the velocities after damping, feedback
 // and eq. 7 (Controller::shapeMatchStep's first loop).
-__kernel void sm_velocities(
-    __global const float* x, __global const float* y, __global const float* z, __global float* vx,
-    __global float* vy, __global float* vz, __global const float* x0, __global const float* y0,
-    __global const float* z0, __global const float* bx0, __global const float* by0, __global const float* bz0,
-    float w, uint n, __global const uint* of_start, __global const uint* of, __global const float* rest_cx,
-    __global const float* rest_cy, __global const float* rest_cz, __global const float* from_cx,
-    __global const float* from_cy, __global const float* from_cz, __global const float4* q,
-    __global const float* com_x, __global const float* com_y, __global const float* com_z,
-    __global const float* cv_x, __global const float* cv_y, __global const float* cv_z,
-    __global const float* ux, __global const float* uy, __global const float* uz, float h, float alpha,
-    float feedback, float damping, __global float* gx, __global float* gy, __global float* gz) {
+__kernel void sm_velocities(__global const float* x, __global const float* y, __global const float* z,
+                            __global float* vx, __global float* vy, __global float* vz, FF_SM_REST_PARAMS,
+                            __global const uint* of_start, __global const uint* of, __global const float4* q,
+                            __global const float* com_x, __global const float* com_y,
+                            __global const float* com_z, __global const float* cv_x,
+                            __global const float* cv_y, __global const float* cv_z, __global const float* ux,
+                            __global const float* uy, __global const float* uz, FfShapeMatchArgs A,
+                            __global float* gx, __global float* gy, __global float* gz) {
   const uint i = get_global_id(0);
-  if (i >= n) return;
-  const uint b = of_start[i], e = of_start[i + 1];
-  // clusterGoals (eq. 8): the mean over the particle's clusters of R_c (x0 - c0_c) + c_c.
-  ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
-  const ff_float3 p0 = ff_blend_rest_at(bx0, by0, bz0, x0, y0, z0, i, w);
-  for (uint k = b; k < e; ++k) {
-    const uint c = of[k];
-    const ff_mat3 r = ff_quat_to_mat3(q[c]);
-    g += ff_mat3_mul_vec(r,
-                         p0 - ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w)) +
-         FF_F3(com_x[c], com_y[c], com_z[c]);
-  }
-  const float ginv = e > b ? 1.0f / (float)(e - b) : 0.0f;
-  const ff_float3 goal = FF_F3(g.x * ginv, g.y * ginv, g.z * ginv);
+  if (i >= A.n) return;
+  const ff_float3 goal = ff_sm_goal(x0, y0, z0, bx0, by0, bz0, rest_cx, rest_cy, rest_cz, from_cx, from_cy,
+                                    from_cz, of_start, of, q, com_x, com_y, com_z, i, A.w);
   gx[i] = goal.x, gy[i] = goal.y, gz[i] = goal.z;
-
-  ff_float3 v = FF_F3(vx[i], vy[i], vz[i]);
-  const ff_float3 p = FF_F3(x[i], y[i], z[i]);
-  ff_float3 vc = FF_F3(0.0f, 0.0f, 0.0f);
-  for (uint k = b; k < e; ++k) {
-    const uint c = of[k];
-    vc += FF_F3(cv_x[c], cv_y[c], cv_z[c]);
-  }
-  vc = vc * (1.0f / (float)(e - b));
-  v = ff_feedback_velocity(v, vc, damping);  // towards the clusters' motion
-  v = ff_feedback_velocity(v, FF_F3(ux[i], uy[i], uz[i]), feedback);
-  v += ff_shape_match_dv(goal, p, alpha, h);
+  const ff_float3 v = ff_sm_velocity(FF_F3(vx[i], vy[i], vz[i]), FF_F3(x[i], y[i], z[i]), goal,
+                                     FF_F3(ux[i], uy[i], uz[i]), of_start, of, cv_x, cv_y, cv_z, i, A);
   vx[i] = v.x, vy[i] = v.y, vz[i] = v.z;
 }
 
@@ -140,40 +110,32 @@ __kernel void sm_velocities(
 // out = dv, dw, com (9 floats).
 __kernel void sm_anchor(__global const float* x, __global const float* y, __global const float* z,
                         __global const float* vx, __global const float* vy, __global const float* vz,
-                        __global const float* x0, __global const float* y0, __global const float* z0, uint n,
-                        float4 rest_c, float4 anchor, float4 up, float alpha, float h,
-                        __global const float4* q, uint nclusters, int iterations, __global float* out) {
+                        __global const float* x0, __global const float* y0, __global const float* z0,
+                        float4 rest_c, float4 anchor, float4 up, FfShapeMatchArgs A, __global const float4* q,
+                        __global float* out) {
   if (get_global_id(0) != 0) return;
-  const ff_quat qw = nclusters > 0u ? q[0] : FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
+  const ff_quat qw = A.nclusters > 0u ? q[0] : FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
   const ff_anchor_fix f = ff_anchor_correction(
-      x, y, z, vx, vy, vz, x0, y0, z0, n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
-      FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), alpha, h, qw, iterations);
+      x, y, z, vx, vy, vz, x0, y0, z0, A.n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
+      FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), A.alpha, A.h, qw, A.iterations);
   out[0] = f.dv.x, out[1] = f.dv.y, out[2] = f.dv.z, out[3] = f.dw.x, out[4] = f.dw.y, out[5] = f.dw.z;
   out[6] = f.com.x, out[7] = f.com.y, out[8] = f.com.z;
 }
 
-// The anchor's correction (anchored != 0: from fix), integration and the container clamp.
+// The anchor's correction (A.anchored: from fix), integration and the container clamp.
 __kernel void sm_integrate(__global float* x, __global float* y, __global float* z, __global float* vx,
-                           __global float* vy, __global float* vz, uint n, float h, int anchored,
-                           __global const float* fix, float4 box_lo, float4 box_hi, __global int* bad,
-                           int tag) {
+                           __global float* vy, __global float* vz, FfShapeMatchArgs A,
+                           __global const float* fix, __global int* bad) {
   const uint i = get_global_id(0);
-  if (i >= n) return;
+  if (i >= A.n) return;
   ff_float3 v = FF_F3(vx[i], vy[i], vz[i]);
   const ff_float3 p = FF_F3(x[i], y[i], z[i]);
-  if (anchored)
+  if (A.anchored)
     v = ff_anchor_velocity(v, p, FF_F3(fix[0], fix[1], fix[2]), FF_F3(fix[3], fix[4], fix[5]),
                            FF_F3(fix[6], fix[7], fix[8]));
-  ff_float3 np = p + v * h;
-  float c3[3] = {np.x, np.y, np.z}, v3[3] = {v.x, v.y, v.z};
-  const float lo[3] = {box_lo.x, box_lo.y, box_lo.z}, hi[3] = {box_hi.x, box_hi.y, box_hi.z};
-  for (int d = 0; d < 3; ++d) {
-    if (c3[d] < lo[d]) c3[d] = lo[d], v3[d] = 0.0f;
-    if (c3[d] > hi[d]) c3[d] = hi[d], v3[d] = 0.0f;
-  }
-  x[i] = c3[0], y[i] = c3[1], z[i] = c3[2];
-  vx[i] = v3[0], vy[i] = v3[1], vz[i] = v3[2];
   int ok = 1;
-  for (int d = 0; d < 3; ++d) ok = ok && isfinite(c3[d]) && isfinite(v3[d]);
-  if (!ok) ff_report_nonfinite(bad, tag);
+  const ff_float3 np = ff_sm_move(p, &v, A, &ok);
+  x[i] = np.x, y[i] = np.y, z[i] = np.z;
+  vx[i] = v.x, vy[i] = v.y, vz[i] = v.z;
+  if (!ok) ff_report_nonfinite(bad, A.tag);
 }

@@ -17,6 +17,9 @@ namespace ff {
 
 namespace {
 
+// 4-byte fields with no padding: the kernels read the same bytes.
+static_assert(sizeof(FfScaleArgs) == 13 * 4, "FfScaleArgs must hold 4-byte fields only");
+
 class ClControl : public ClForce {
  public:
   ClControl(const cl::Program& program, const ClContext& ctx)
@@ -45,19 +48,22 @@ void ClControl::prepare(ClForceContext& c) {
   if (nc == 0 || f.n == 0) return;
   // The fluid as the grid phase sorted it (cell h).
   const DeviceGrid& g = *f.grid;
-  const float radius = c.params.control.radius, volume = c.params.fluid.restVolume();
+  FfScaleArgs A{};
+  const cl_float4 geo = g.geom.geo();
+  const cl_int4 dims = g.geom.dims();
+  for (int k = 0; k < 4; ++k) A.geo[k] = geo.s[k], A.dims[k] = dims.s[k];
+  A.cell = g.geom.cell, A.radius = c.params.control.radius, A.volume = c.params.fluid.restVolume();
+  A.nc = cl_uint(nc), A.tag = cl_int(c.tag);
   // The scalar variant (GPUs): 8 work-items per control particle, one per
   // lane of the float8 sums, in work-groups of a power of two >= 8.
   if (!f.lanes && scale_by_lane_.pow2_local >= 8) {
     const size_t local = scale_by_lane_.pow2_local, groups = (8 * nc + local - 1) / local;
     launchGroups(*f.queue, scale_by_lane_, groups, local, d.cx.get(), d.cy.get(), d.cz.get(), d.crs.get(),
-                 cl_uint(nc), *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, g.start.get(), g.geom.geo(),
-                 g.geom.dims(), g.geom.cell, radius, volume, d.s.get(), d.ux.get(), d.uy.get(), d.uz.get(),
-                 *f.bad, cl_int(c.tag), cl::Local(local * 4 * sizeof(float)));
+                 *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, g.start.get(), A, d.s.get(), d.ux.get(), d.uy.get(),
+                 d.uz.get(), *f.bad, cl::Local(local * 4 * sizeof(float)));
   } else {
-    launch(*f.queue, scale_, nc, d.cx.get(), d.cy.get(), d.cz.get(), d.crs.get(), cl_uint(nc), *f.x, *f.y,
-           *f.z, *f.vx, *f.vy, *f.vz, g.start.get(), g.geom.geo(), g.geom.dims(), g.geom.cell, radius, volume,
-           d.s.get(), d.ux.get(), d.uy.get(), d.uz.get(), *f.bad, cl_int(c.tag));
+    launch(*f.queue, scale_, nc, d.cx.get(), d.cy.get(), d.cz.get(), d.crs.get(), *f.x, *f.y, *f.z, *f.vx,
+           *f.vy, *f.vz, g.start.get(), A, d.s.get(), d.ux.get(), d.uy.get(), d.uz.get(), *f.bad);
   }
 }
 

@@ -5,7 +5,8 @@
 //   * only `float`, `int`, `uint`, the ff_float3 / ff_quat helpers below and
 //     the value type T of FF_GENERIC formulas;
 //   * every function is FF_FN (inline, no state);
-//   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX / FF_FMOD so both
+//   * math goes through FF_SQRT / FF_FABS / FF_FMIN / FF_FMAX / FF_FMOD (and
+//     FF_ISFINITE) so both
 //     sides call the single-precision functions, each correctly rounded (sqrt
 //     where the device has -cl-fp32-correctly-rounded-divide-sqrt); sin and
 //     cos, which OpenCL does not round correctly, are written out in float
@@ -27,6 +28,7 @@ typedef float4 ff_quat; /* (x, y, z, w) */
 #define FF_FLOOR(a) floor(a)
 #define FF_FMIN(a, b) fmin((a), (b))
 #define FF_FMAX(a, b) fmax((a), (b))
+#define FF_ISFINITE(a) isfinite(a)
 #define FF_ZERO_OF(T) ((T)(0.0f))
 #define FF_GENERIC(def, name) def(float, name) def(float8, name##_8)
 #else
@@ -85,6 +87,7 @@ inline float ff_fmax_c(float a, float b) {
 }
 #define FF_FMIN(a, b) ff_fmin_c((float)(a), (float)(b))
 #define FF_FMAX(a, b) ff_fmax_c((float)(a), (float)(b))
+#define FF_ISFINITE(a) std::isfinite((float)(a))
 #define FF_ZERO_OF(T) (T{})
 #define FF_GENERIC(def, name) \
   template <class FF_T>       \

@@ -10,6 +10,32 @@ FF_FN float ff_control_scale(float rho_hat) {
   return 1.0f - FF_FMIN(1.0f, rho_hat);
 }
 
+/* A control particle's density scale s (eq. 5) and u_bar, the
+ * kernel-weighted mean velocity of the fluid around it (for the fluid
+ * feedback), from its lane-combined sums w = sum W and wv = sum W v over
+ * fluid particles of rest volume `volume`. Where the kernel is only partly
+ * filled the missing part counts as still air (so the feedback also damps).
+ * Returns s; *u receives u_bar. The per-particle body of
+ * Controller::computeScale and kernels/control_scale.cl. */
+FF_FN float ff_control_scale_of(float w, ff_float3 wv, float volume, ff_float3* u) {
+  const float rho_hat = volume * w;
+  const float norm = w > 0.0f ? volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
+  *u = FF_F3(wv.x * norm, wv.y * norm, wv.z * norm);
+  return ff_control_scale(rho_hat);
+}
+
+/* The control-scale kernels' scalars (kernels/control_scale.cl), 4-byte
+ * fields: the fluid grid's origin and cell (geo, as DeviceGrid's float4) and
+ * cells per axis (dims, the 4th unused), its query cell, the control radius,
+ * a fluid particle's rest volume, the control particles and the check tag. */
+typedef struct {
+  float geo[4];
+  int dims[4];
+  float cell, radius, volume;
+  uint nc;
+  int tag;
+} FfScaleArgs;
+
 /* Adaptive control (docs/CONTROL_UNITS.md, "Thin features"): a control
  * particle's own radius, the control radius times its scale (at most 1: the
  * target's local thickness around it). Eq. 4-6 weigh each control particle

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "control/control_args.h"
+#include "control/shape_match_args.h"
 #include "control/shape_matching.h"
 #include "ff_anchor.h"
 #include "ff_control.h"
@@ -148,15 +149,11 @@ bool Controller::computeScale(const FluidView& f) {
     const float r = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i)]), coef = ff_poly6_coef(r);
     const float p[3] = {set_.x[i], set_.y[i], set_.z[i]};
     const ScaleSums t = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, coef);
-    const float rho_hat = f.volume * t.w;
-    const float s = ff_control_scale(rho_hat);
+    ff_float3 u;
+    const float s = ff_control_scale_of(t.w, FF_F3(t.ux, t.uy, t.uz), f.volume, &u);
     fields_.s[i] = s;
-    // Kernel-weighted mean fluid velocity; where the kernel is only partly
-    // filled the missing part counts as still air (so it also damps).
-    const float norm = t.w > 0.0f ? f.volume / FF_FMAX(rho_hat, 1.0f) : 0.0f;
-    const float u[3] = {t.ux * norm, t.uy * norm, t.uz * norm};
-    fields_.ux[i] = u[0], fields_.uy[i] = u[1], fields_.uz[i] = u[2];
-    bad |= std::isfinite(s) && std::isfinite(u[0]) && std::isfinite(u[1]) && std::isfinite(u[2]) ? 0 : 1;
+    fields_.ux[i] = u.x, fields_.uy[i] = u.y, fields_.uz[i] = u.z;
+    bad |= std::isfinite(s) && std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? 0 : 1;
   }
   return !bad;
 }
@@ -310,57 +307,43 @@ bool Controller::shapeMatchStep() {
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);
   clusterGoals(set_, q_, cx_, cy_, cz_, gx_, gy_, gz_);
   clusterVelocities(set_, cvx_, cvy_, cvz_);
-  const float h = sm_.time_step, alpha = sm_.stiffness, fb = cp_.feedback, damp = sm_.damping;
+  // The anchor acts: on, and there is gravity to tell "up" (ff_anchor.h).
+  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
+  const bool anchored = sm_.anchor != 0 && ff_anchor_up(g_, &up);
+  const FfShapeMatchArgs A =
+      shapeMatchArgs(sm_, cp_.feedback, uint32_t(n), uint32_t(set_.clusters.count()), set_.blendWeight(),
+                     anchored, bounded_ ? lo_ : nullptr, bounded_ ? hi_ : nullptr, 0);
   const Clusters& cl = set_.clusters;
   // The velocities after damping, feedback and eq. 7.
 #pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
-    ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
-    const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
-    ff_float3 vc = FF_F3(0.0f, 0.0f, 0.0f);
-    for (uint32_t k = cl.of_start[i]; k < cl.of_start[i + 1]; ++k) {
-      const uint32_t c = cl.of[k];
-      vc += FF_F3(cvx_[c], cvy_[c], cvz_[c]);
-    }
-    vc = vc * (1.0f / float(cl.of_start[i + 1] - cl.of_start[i]));
-    v = ff_feedback_velocity(v, vc, damp);  // the same relaxation, towards the clusters' motion
-    v = ff_feedback_velocity(v, FF_F3(fields_.ux[i], fields_.uy[i], fields_.uz[i]), fb);
-    v += ff_shape_match_dv(FF_F3(gx_[i], gy_[i], gz_[i]), x, alpha, h);
+    const ff_float3 v = ff_sm_velocity(FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]),
+                                       FF_F3(set_.x[i], set_.y[i], set_.z[i]), FF_F3(gx_[i], gy_[i], gz_[i]),
+                                       FF_F3(fields_.ux[i], fields_.uy[i], fields_.uz[i]), cl.of_start.data(),
+                                       cl.of.data(), cvx_.data(), cvy_.data(), cvz_.data(), uint32_t(i), A);
     set_.vx[i] = v.x, set_.vy[i] = v.y, set_.vz[i] = v.z;
   }
   // The anchor: the set's rigid motion along up and its tilt (ff_anchor.h).
-  ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
-  const bool anchored = sm_.anchor != 0 && ff_anchor_up(g_, &up);
   ff_anchor_fix fix{};
   if (anchored)
     fix = ff_anchor_correction(set_.x.data(), set_.y.data(), set_.z.data(), set_.vx.data(), set_.vy.data(),
                                set_.vz.data(), set_.x0.data(), set_.y0.data(), set_.z0.data(), uint32_t(n),
                                FF_F3(set_.rest_cx, set_.rest_cy, set_.rest_cz),
-                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, alpha, h,
-                               q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], sm_.rotation_iterations);
+                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, A.alpha, A.h,
+                               q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], A.iterations);
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
     if (anchored) v = ff_anchor_velocity(v, x, fix.dv, fix.dw, fix.com);
-    ff_float3 nx = x + v * h;
-    if (bounded_) {
-      float* c[3] = {&nx.x, &nx.y, &nx.z};
-      float* vv[3] = {&v.x, &v.y, &v.z};
-      for (int d = 0; d < 3; ++d) {
-        if (*c[d] < lo_[d]) *c[d] = lo_[d], *vv[d] = 0.0f;
-        if (*c[d] > hi_[d]) *c[d] = hi_[d], *vv[d] = 0.0f;
-      }
-    }
+    int ok = 1;
+    const ff_float3 nx = ff_sm_move(x, &v, A, &ok);
     set_.x[i] = nx.x, set_.y[i] = nx.y, set_.z[i] = nx.z;
     set_.vx[i] = v.x, set_.vy[i] = v.y, set_.vz[i] = v.z;
-    bad |= std::isfinite(nx.x) && std::isfinite(nx.y) && std::isfinite(nx.z) && std::isfinite(v.x) &&
-                   std::isfinite(v.y) && std::isfinite(v.z)
-               ? 0
-               : 1;
+    bad |= ok ? 0 : 1;
   }
-  if (set_.blending()) set_.blend_elapsed += double(h);
+  if (set_.blending()) set_.blend_elapsed += double(A.h);
   return !bad;
 }
 

@@ -1,6 +1,7 @@
 #include "control/shape_matching.h"
 
 #include "ff_cluster_sums.h"
+#include "ff_shape_match.h"
 #include "parallel/parallel_grain.h"
 
 namespace ff {
@@ -15,17 +16,11 @@ void clusterFrames(const ControlSet& set, std::vector<ff_quat>& q, std::vector<f
   cx.resize(size_t(nc)), cy.resize(size_t(nc)), cz.resize(size_t(nc));
 #pragma omp parallel for schedule(dynamic, 16)
   for (long c = 0; c < nc; ++c) {
-    // The sums in the kernels' lane order (ff_cluster_sums.h).
-    const uint32_t b = cl.start[c], e = cl.start[c + 1];
     const ff_float3 com =
-        ff_cluster_mean3_of(set.x.data(), set.y.data(), set.z.data(), cl.members.data(), b, e);
-    const ff_float3 rc =
-        ff_blend_rest_at(cl.from_cx.data(), cl.from_cy.data(), cl.from_cz.data(), cl.rest_cx.data(),
-                         cl.rest_cy.data(), cl.rest_cz.data(), uint32_t(c), w);
-    const ff_mat3 apq = ff_cluster_apq_blend_of(set.x.data(), set.y.data(), set.z.data(), set.x0.data(),
-                                                set.y0.data(), set.z0.data(), set.bx0.data(), set.by0.data(),
-                                                set.bz0.data(), w, cl.members.data(), b, e, com, rc);
-    q[c] = ff_extract_rotation(apq, q[c], iterations);
+        ff_sm_frame(set.x.data(), set.y.data(), set.z.data(), set.x0.data(), set.y0.data(), set.z0.data(),
+                    set.bx0.data(), set.by0.data(), set.bz0.data(), cl.rest_cx.data(), cl.rest_cy.data(),
+                    cl.rest_cz.data(), cl.from_cx.data(), cl.from_cy.data(), cl.from_cz.data(),
+                    cl.start.data(), cl.members.data(), uint32_t(c), w, iterations, &q[size_t(c)]);
     cx[c] = com.x, cy[c] = com.y, cz[c] = com.z;
   }
 }
@@ -52,20 +47,12 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
   const float w = set.blendWeight();
 #pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
   for (long p = 0; p < n; ++p) {
-    ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
-    const uint32_t b = cl.of_start[p], e = cl.of_start[p + 1];
-    const ff_float3 x0 = ff_blend_rest_at(set.bx0.data(), set.by0.data(), set.bz0.data(), set.x0.data(),
-                                          set.y0.data(), set.z0.data(), uint32_t(p), w);
-    for (uint32_t k = b; k < e; ++k) {
-      uint32_t c = cl.of[k];
-      ff_mat3 r = ff_quat_to_mat3(q[c]);
-      g += ff_mat3_mul_vec(
-               r, x0 - ff_blend_rest_at(cl.from_cx.data(), cl.from_cy.data(), cl.from_cz.data(),
-                                        cl.rest_cx.data(), cl.rest_cy.data(), cl.rest_cz.data(), c, w)) +
-           FF_F3(cx[c], cy[c], cz[c]);
-    }
-    const float inv = e > b ? 1.0f / float(e - b) : 0.0f;
-    gx[p] = g.x * inv, gy[p] = g.y * inv, gz[p] = g.z * inv;
+    const ff_float3 g =
+        ff_sm_goal(set.x0.data(), set.y0.data(), set.z0.data(), set.bx0.data(), set.by0.data(),
+                   set.bz0.data(), cl.rest_cx.data(), cl.rest_cy.data(), cl.rest_cz.data(), cl.from_cx.data(),
+                   cl.from_cy.data(), cl.from_cz.data(), cl.of_start.data(), cl.of.data(), q.data(),
+                   cx.data(), cy.data(), cz.data(), uint32_t(p), w);
+    gx[p] = g.x, gy[p] = g.y, gz[p] = g.z;
   }
 }
 

@@ -19,9 +19,13 @@ other"; docs/RESULTS.md, "Resolution and scale").
       with the scene. The mesh path of a mesh target is resolved by
       FLOWFORM_MESH_PATH as for BASE.
 
-  compare REF.csv OTHER.csv ... [--until T] [--every DT]
+  compare REF.csv OTHER.csv[@C] ... [--until T] [--every DT] [--from T0]
       prints each metrics CSV's iou at every DT seconds up to T, and the
-      largest |iou - iou_ref| over those times.
+      largest |iou - iou_ref| over those times from T0 on; then the largest
+      difference over every row of REF from T0 to T (the whole curve, each
+      step). OTHER.csv@C reads a scene scaled by C on the clock of its fall
+      under gravity: its time t is compared at t / sqrt(C) (sqrt(L / g),
+      the Froude-scaled clock).
 
 Usage (the commands of docs/RESULTS.md):
   python3 bench/resolution_scale.py write scenes/water/bunny.json build/res
@@ -154,35 +158,53 @@ def iou_curve(path):
     return [(float(r["time"]), float(r["iou"])) for r in rows]
 
 
-def at(curve, t):
-    best = min(curve, key=lambda p: abs(p[0] - t))
-    if abs(best[0] - t) > 0.01:
-        return None
-    return best[1]
+def interp(curve, t):
+    """iou at time t, linear between rows; None outside the curve."""
+    for (t0, v0), (t1, v1) in zip(curve, curve[1:]):
+        if t0 <= t <= t1:
+            return v0 if t1 == t0 else v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+    return None
 
 
 def compare(argv):
-    until, every, paths = 3.0, 0.25, []
+    until, every, start, paths, clocks = 3.0, 0.25, 0.0, [], []
     while argv:
         if argv[0] == "--until":
             until, argv = float(argv[1]), argv[2:]
         elif argv[0] == "--every":
             every, argv = float(argv[1]), argv[2:]
+        elif argv[0] == "--from":
+            start, argv = float(argv[1]), argv[2:]
         else:
-            paths, argv = paths + [argv[0]], argv[1:]
-    curves = [iou_curve(p) for p in paths]
+            path, _, c = argv[0].partition("@")
+            paths, clocks, argv = paths + [path], clocks + [math.sqrt(float(c)) if c else 1.0], argv[1:]
+    # Each curve on the reference's clock: t_ref = t / sqrt(C).
+    curves = [[(t / k, v) for t, v in iou_curve(p)] for p, k in zip(paths, clocks)]
+    names = [os.path.basename(p) + ("@%g" % (k * k) if k != 1.0 else "") for p, k in zip(paths, clocks)]
     times = [every * (k + 1) for k in range(int(round(until / every)))]
-    print("time " + " ".join(os.path.basename(p) for p in paths))
+    print("time " + " ".join(names))
     worst = [0.0] * len(paths)
     for t in times:
-        ref = at(curves[0], t)
-        vals = [at(c, t) for c in curves]
+        vals = [interp(c, t) for c in curves]
+        ref = vals[0]
         print("%.2f " % t + " ".join("-" if v is None else "%.3f" % v for v in vals))
         for k, v in enumerate(vals):
-            if v is not None and ref is not None:
+            if v is not None and ref is not None and t >= start - 1e-9:
                 worst[k] = max(worst[k], abs(v - ref))
-    print("max |iou - %s|: " % os.path.basename(paths[0]) +
-          " ".join("%s %.3f" % (os.path.basename(p), w) for p, w in zip(paths[1:], worst[1:])))
+    print("max |iou - %s| at those times from %g s: " % (names[0], start) +
+          " ".join("%s %.3f" % (n, w) for n, w in zip(names[1:], worst[1:])))
+    # Every row of the reference from `start` to `until`.
+    line = []
+    for name, c in zip(names[1:], curves[1:]):
+        w, wt = 0.0, None
+        for t, ref in curves[0]:
+            if t < start - 1e-9 or t > until + 1e-9:
+                continue
+            v = interp(c, t)
+            if v is not None and abs(v - ref) >= w:
+                w, wt = abs(v - ref), t
+        line.append("%s %.3f (at %.3f s)" % (name, w, wt) if wt is not None else "%s -" % name)
+    print("max |iou - %s| over every step from %g s: " % (names[0], start) + " ".join(line))
 
 
 def main():

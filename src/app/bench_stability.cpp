@@ -30,7 +30,8 @@ bool isSwitch(const ParamInfo& p) {
 // shape-matching groups that act with the scene's parameters (not the force
 // units, a choice of units; with normalise on, attraction_g and velocity_rate
 // instead of attraction and velocity; with radius_spacings on, it instead of
-// the radius it sets), and the switches (normalise, adaptive), each run once
+// the radius it sets; with time_step_fall on, it instead of the time_step it
+// sets), and the switches (normalise, adaptive), each run once
 // switched.
 std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names, const Params& params) {
   std::vector<const ParamInfo*> out;
@@ -39,9 +40,11 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
     const std::string g = p.group, k = p.key;
     const bool number = p.type == ParamInfo::Type::Real || p.type == ParamInfo::Type::Integer;
     const bool in_spacings = params.control.radius_spacings > 0.0f;
+    const bool in_fall_times = params.shape.time_step_fall > 0.0f;
     const bool inactive = (g == "control" && normalised && (k == "attraction" || k == "velocity")) ||
                           (!normalised && (k == "attraction_g" || k == "velocity_rate")) ||
-                          (g == "control" && k == (in_spacings ? "radius" : "radius_spacings"));
+                          (g == "control" && k == (in_spacings ? "radius" : "radius_spacings")) ||
+                          (g == "shape_matching" && k == (in_fall_times ? "time_step" : "time_step_fall"));
     if (names.empty() && number && !inactive && (g == "control" || g == "shape_matching")) out.push_back(&p);
   }
   for (const std::string& n : names) {

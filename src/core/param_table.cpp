@@ -137,6 +137,10 @@ const std::vector<ParamInfo>& paramTable() {
        "rest-shape blend at a target change, in fall times sqrt(2 d / g) over the largest distance d a "
        "rest position moves (0 = off: the new rest shape at once)",
        FF_FIELD(shape.blend)},
+      {"shape_matching", "time_step_fall", T::Real, 0.0, 10.0, false,
+       "> 0: the shape-matching step in units of sqrt(radius / g), set at every target; "
+       "0: time_step in seconds",
+       FF_FIELD(shape.time_step_fall)},
   };
   return table;
 }

@@ -64,6 +64,10 @@ int ControlParams::pullMode() const {
   return units == ControlForceUnits::ForceDensity ? FF_PULL_PER_DENSITY : FF_PULL_UNITS;
 }
 
+float ShapeMatchParams::timeStepFor(float radius, const float g[3]) const {
+  return time_step_fall > 0.0f ? time_step_fall * std::sqrt(radius / gravityScale(g)) : time_step;
+}
+
 double ShapeMatchParams::clustersPerParticle() const {
   const double per_axis =
       std::floor(2.0 * double(cluster_half_width) / double(std::max(1, cluster_stride))) + 1.0;
@@ -114,6 +118,10 @@ Params waterParams() {
   // (docs/RESULTS.md, "Rest-shape blend at target changes": shorter blends
   // still ring the control set's slow deformation mode).
   p.shape.blend = 8.0f;
+  // The shape-matching clock follows the fall time sqrt(r / g), not the
+  // second (docs/CONTROL_UNITS.md, "Shape-matching clock"): 0.0904 of it is
+  // the paper's 5 ms at the paper's 0.03 m radius.
+  p.shape.time_step_fall = 0.0904f;
   return p;
 }
 

@@ -141,6 +141,15 @@ struct ShapeMatchParams {
   // distance a rest position moves, sqrt(2 d / g). 0 = off (the paper: the
   // new rest shape at once). The first target of a run is never blended.
   float blend = 0.0f;
+  // The shape-matching step in units of sqrt(r / g), r the control radius
+  // (docs/CONTROL_UNITS.md, "Shape-matching clock"): > 0 sets `time_step`
+  // at every target, so that eq. 7's stiffness, the damping and the feedback
+  // (each a fraction per step) act on the scene's own fall time and a scene
+  // scaled by c forms on a clock sqrt(c) times slower, as its fluid falls;
+  // 0 = `time_step` in seconds, as the paper.
+  float time_step_fall = 0.0f;
+  // The shape-matching step for control radius `radius` under gravity `g`.
+  float timeStepFor(float radius, const float g[3]) const;
 
   // The most clusters one control particle belongs to: the lattice points
   // (multiples of the stride) within half_width voxels, per axis

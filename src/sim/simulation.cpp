@@ -355,7 +355,10 @@ void Simulation::setParams(const Params& params) {
 }
 
 Params Simulation::withControlRadius(Params params, float voxel) {
-  if (voxel > 0.0f) params.control.radius = params.control.radiusFor(voxel);
+  if (voxel > 0.0f) {
+    params.control.radius = params.control.radiusFor(voxel);
+    params.shape.time_step = params.shape.timeStepFor(params.control.radius, params.fluid.gravity);
+  }
   return params;
 }
 

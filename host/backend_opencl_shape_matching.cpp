@@ -70,8 +70,8 @@ void OpenClBackend::runShapeMatchStep(int tag) {
     const ControlSet& s = control_;
     launch(d.queue(), d.sm_anchor, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
            d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f),
-           f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f), f4(up.x, up.y, up.z, 0.0f), A, d.q.get(),
-           d.anchor_fix.get());
+           f4(s.anchor_x, s.anchor_y, s.anchor_z, float(sm.anchor)),
+           f4(up.x, up.y, up.z, ff_anchor_g(params_.fluid.gravity)), A, d.q.get(), d.anchor_fix.get());
   }
   launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
          d.cvz.get(), A, d.anchor_fix.get(), d.bad.get());

@@ -107,7 +107,8 @@ __kernel void sm_velocities(__global const float* x, __global const float* y, __
 }
 
 // The anchor's correction (ff_anchor.h), one work-item over the whole set:
-// out = dv, dw, com (9 floats).
+// out = dv, dw, com (9 floats). anchor.w is the mode (params.shape_matching.anchor),
+// up.w gravity's magnitude.
 __kernel void sm_anchor(__global const float* x, __global const float* y, __global const float* z,
                         __global const float* vx, __global const float* vy, __global const float* vz,
                         __global const float* x0, __global const float* y0, __global const float* z0,
@@ -115,9 +116,10 @@ __kernel void sm_anchor(__global const float* x, __global const float* y, __glob
                         __global float* out) {
   if (get_global_id(0) != 0) return;
   const ff_quat qw = A.nclusters > 0u ? q[0] : FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
-  const ff_anchor_fix f = ff_anchor_correction(
-      x, y, z, vx, vy, vz, x0, y0, z0, A.n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
-      FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), A.alpha, A.h, qw, A.iterations);
+  const ff_anchor_fix f =
+      ff_anchor_correction(x, y, z, vx, vy, vz, x0, y0, z0, A.n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
+                           FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), (int)anchor.w, up.w,
+                           A.alpha, A.h, qw, A.iterations);
   out[0] = f.dv.x, out[1] = f.dv.y, out[2] = f.dv.z, out[3] = f.dw.x, out[4] = f.dw.y, out[5] = f.dw.z;
   out[6] = f.com.x, out[7] = f.com.y, out[8] = f.com.z;
 }

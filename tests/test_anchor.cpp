@@ -8,6 +8,7 @@
 // per step).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -87,6 +88,16 @@ struct RisingFluid {
   }
 };
 
+// The mean fluid velocity u_bar that `c`'s control particles read from fluid
+// rising through them at 0.5 m/s (RisingFluid), their fields computed.
+double risingFluidSpeed(ff::Controller& c) {
+  const RisingFluid fluid(0.5f);
+  if (!c.computeScale(fluid.view())) return 0.0;
+  double ubar = 0;
+  for (float u : c.fields().uy) ubar += u;
+  return ubar / double(c.fields().uy.size());
+}
+
 // The paper's parameters with the anchor on or off.
 ff::Params anchored(int anchor) {
   ff::Params p = ff::presetParams("paper");
@@ -161,4 +172,87 @@ TEST(Anchor, ATippedSetStandsBackUp) {
       EXPECT_NEAR(tiltDegrees(c.set()), 20.0, 0.1) << "shape matching keeps a rigid rotation";
     }
   }
+}
+
+// FF_ANCHOR_STAND (anchor = 2), the water preset's: the set never rises above
+// its anchor (where its rigid rest shape stands on the floor). Placed 1 mm
+// above it, in fluid that rises through it at 0.5 m/s (which lifts the same
+// set more than 5 cm without the anchor: the test above), its rigid velocity
+// along up becomes -alpha / h times its height each step, whatever the
+// feedback gave it: the height falls by the fraction alpha per step,
+// 1 mm (1 - alpha)^k after k steps, until it is back at its anchor. And it
+// stays upright: nothing turns it.
+TEST(Anchor, StandingSetDoesNotClimbWithFluidRisingThroughIt) {
+  const ff::Params p = anchored(2);
+  ff::Controller c;
+  ff::ControlSet s = column(0.0);
+  const double above = 0.001;
+  s.anchor_x = 0.1f, s.anchor_y = float(meanY(s) - above), s.anchor_z = 0.1f;
+  start(c, p, s);
+  const double ubar = risingFluidSpeed(c);
+  ASSERT_GT(ubar, 0.25);
+  const double anchor = s.anchor_y, a = p.shape.stiffness;
+  // Once back at its anchor (to float precision), a step that finds it at or
+  // below lets the feedback lift it by h c ubar, which the next steps take
+  // away again: it stays within one such lift of its anchor.
+  const double lift = p.shape.time_step * p.control.feedback * ubar;
+  for (int k = 1; k <= 100; ++k) {
+    ASSERT_TRUE(c.shapeMatchStep());
+    const double height = meanY(c.set()) - anchor, want = above * std::pow(1.0 - a, k);
+    SCOPED_TRACE(k);
+    if (want > 0.1 * lift) {
+      EXPECT_NEAR(height, want, 1e-7) << "back down to its anchor";
+    } else {
+      EXPECT_GT(height, -1e-7);
+      EXPECT_LT(height, std::max(want, lift) + 1e-7) << "it never climbs off its anchor";
+    }
+  }
+  ASSERT_LT(lift, 1e-4);  // 0.05 mm
+  EXPECT_LT(tiltDegrees(c.set()), 0.01) << "and upright";
+}
+
+// Placed 20 cm below its anchor (a shape placed partly under the floor, which
+// rises to stand on it as it forms), the standing anchor leaves it alone:
+// with fluid rising through it, it climbs as without the anchor (the
+// feedback's closed form, 5-20 cm in 0.5 s).
+TEST(Anchor, StandingSetBelowItsAnchorRisesFreely) {
+  const int steps = 100;
+  const ff::Params p = anchored(2);
+  ff::Controller c;
+  ff::ControlSet s = column(0.0);
+  s.anchor_x = 0.1f, s.anchor_y = 0.3f, s.anchor_z = 0.1f;
+  start(c, p, s);
+  const double ubar = risingFluidSpeed(c);
+  const double y0 = meanY(c.set()), cf = p.control.feedback, h = p.shape.time_step;
+  for (int k = 0; k < steps; ++k) ASSERT_TRUE(c.shapeMatchStep());
+  double want = 0, v = 0;
+  for (int k = 0; k < steps; ++k) v += cf * (ubar - v), want += h * v;
+  ASSERT_GT(want, 0.05);
+  ASSERT_LT(want, 0.2);  // stays below the anchor
+  EXPECT_NEAR(meanY(c.set()) - y0, want, 1e-3 * want) << "below its anchor the set is free";
+}
+
+// A column tipped by 20 degrees: the standing anchor turns it back at the
+// rate k = sqrt(g / l) at which an inverted pendulum of length l tips, l the
+// column's centre's height above its lowest rest particle (4 cm): the tilt t
+// follows t_(k+1) = t_k - k h sin t_k (k h sin t: the angle turned in a step
+// at angular velocity k sin t), iterated here. Its height stays.
+TEST(Anchor, StandingSetIsRightedAtTheRateItWouldTip) {
+  const double tilt = 20.0 * M_PI / 180.0;
+  const ff::Params p = anchored(2);
+  ff::Controller c;
+  start(c, p, column(tilt));
+  const double y0 = meanY(c.set()), h = p.shape.time_step, k = std::sqrt(9.81 / (4.0 * kSpacing));
+  double t = tilt;
+  for (int step = 1; step <= 40; ++step) {
+    ASSERT_TRUE(c.shapeMatchStep());
+    t -= k * h * std::sin(t);
+    if (step % 10 == 0) {
+      SCOPED_TRACE(step);
+      // First-order integration of the turn: within 5% of the closed form.
+      EXPECT_NEAR(tiltDegrees(c.set()), t * 180.0 / M_PI, 0.05 * t * 180.0 / M_PI + 0.01);
+    }
+  }
+  EXPECT_LT(t * 180.0 / M_PI, 5.0);  // the closed form rights most of it
+  EXPECT_NEAR(meanY(c.set()), y0, 1e-5) << "turning about its centre keeps its height";
 }

@@ -147,14 +147,21 @@ TEST(OpenClShapeMatching, ClusterSumsAgreeOnBothVariantsAndTheCpuBackend) {
   // (ControlSet::bx0, ff_blend_rest) from the reference jittered by up to
   // 5 mm (so that the clusters still turn), at blend weight 7 / 27 (a third of
   // the blend time).
-  for (int mode : {0, 1, 2}) {
-    const int anchor = mode == 1 ? 1 : 0;
+  // And with the standing anchor (FF_ANCHOR_STAND), 1 cm above its anchor so
+  // that its height is relaxed as well as its tilt.
+  for (int mode : {0, 1, 2, 3}) {
+    const int anchor = mode == 1 ? 1 : mode == 3 ? 2 : 0;
     const bool blend = mode == 2;
-    SCOPED_TRACE(blend ? "blending" : anchor ? "anchored" : "not anchored");
+    SCOPED_TRACE(blend ? "blending" : anchor == 2 ? "standing" : anchor ? "anchored" : "not anchored");
     ff::Params params = sim.scene().params;
     params.shape.anchor = anchor;
     ASSERT_NE(params.fluid.gravity[1], 0.0f);
     ff::ControlSet ctl = control;
+    if (anchor == 2) {
+      double c[3];
+      ff::centreOfMass(ctl.x, ctl.y, ctl.z, c);
+      ctl.anchor_y = float(c[1] - 0.01);
+    }
     if (blend) {
       std::mt19937 rng(7);
       std::uniform_real_distribution<float> u(-0.005f, 0.005f);

@@ -329,7 +329,8 @@ bool Controller::shapeMatchStep() {
     fix = ff_anchor_correction(set_.x.data(), set_.y.data(), set_.z.data(), set_.vx.data(), set_.vy.data(),
                                set_.vz.data(), set_.x0.data(), set_.y0.data(), set_.z0.data(), uint32_t(n),
                                FF_F3(set_.rest_cx, set_.rest_cy, set_.rest_cz),
-                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, A.alpha, A.h,
+                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, sm_.anchor,
+                               ff_anchor_g(g_), A.alpha, A.h,
                                q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], A.iterations);
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)

@@ -129,9 +129,10 @@ const std::vector<ParamInfo>& paramTable() {
       {"shape_matching", "damping", T::Real, 0.0, 1.0, false,
        "how far a control particle's velocity moves towards its clusters' mean per step",
        FF_FIELD(shape.damping)},
-      {"shape_matching", "anchor", T::Integer, 0, 1, false,
-       "1: the control set's height and up axis stay where it was placed (relaxing back at the stiffness); "
-       "0: they follow the fluid (the paper)",
+      {"shape_matching", "anchor", T::Integer, 0, 2, false,
+       "2: the control set never rises above where its rest shape stands on the floor and is righted at "
+       "sqrt(g / its centre's height); 1: its height and up axis stay where it was placed, both ways, "
+       "relaxing back at the stiffness; 0: they follow the fluid (the paper)",
        FF_FIELD(shape.anchor)},
       {"shape_matching", "blend", T::Real, 0.0, 100.0, false,
        "rest-shape blend at a target change, in fall times sqrt(2 d / g) over the largest distance d a "

@@ -110,6 +110,12 @@ Params waterParams() {
   // (docs/CONTROL_UNITS.md, "Normalised pull"); the paper preset keeps eq. 4
   // and 6 raw and the radius in metres.
   p.control.normalise = 1;
+  // Half the paper's velocity force (docs/CONTROL_UNITS.md, "Thin features"):
+  // eq. 6 ties the fluid to the control particles, and at 2.9 it held the
+  // fluid in a thin figure's legs (1.4 times their volume at 3 s) while its
+  // head stayed half empty (stick figure 0.77, runner with the derived count
+  // 0.81; 0.91 and 0.91 at 1.45). At 0.725 a standing disc drains (0.53).
+  p.control.velocity_rate = 1.45f;
   // The radius scales with the scene: 3.06 control spacings is the paper's
   // 0.03 m at the bunny's 3197 control particles (9.8 mm apart), and 0.0299 m
   // at the default voxel of 1.55 fluid spacings.

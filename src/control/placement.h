@@ -18,7 +18,8 @@ namespace ff {
 // shape that is larger than the container along an axis is centred on it):
 // otherwise the walls would push the forming shape away from its fluid. The
 // shift is at most half the region's extent along each axis, so the particles
-// still start over the fluid they control.
+// still start over the fluid they control; at a target change (`standing`
+// given) not along gravity, so that a tall shape starts standing on the floor.
 //
 // With `adaptive` on (thin features, docs/CONTROL_UNITS.md): each particle's
 // radius_scale is the target's local thickness around its voxel

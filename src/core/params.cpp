@@ -128,6 +128,9 @@ Params waterParams() {
   // second (docs/CONTROL_UNITS.md, "Shape-matching clock"): 0.0904 of it is
   // the paper's 5 ms at the paper's 0.03 m radius.
   p.shape.time_step_fall = 0.0904f;
+  // Shapes do not climb off the floor or tip (docs/CONTROL_UNITS.md,
+  // "Anchor": the standing anchor; docs/RESULTS.md, "Standing anchor").
+  p.shape.anchor = 2;
   return p;
 }
 

@@ -129,10 +129,13 @@ struct ShapeMatchParams {
   // < 1 is an undamped oscillator; this makes it converge.
   float damping = 0.1f;
   // The anchor (docs/CONTROL_UNITS.md, "Anchor"; kernels/common/ff_anchor.h):
-  // 1 = the control set's height and its up axis stay where the placement put
-  // them (its rigid velocity along up and its turning about the horizontal
-  // axes relax them back at eq. 7's stiffness); 0 = they follow the fluid,
-  // as the paper (the default).
+  // 2 = standing (the `default`/`water` presets): the control set never rises
+  // above where its rigid rest shape stands on the floor (free below it) and
+  // a tilt is righted at sqrt(g / l), l its rest centre's height; 1 = hold:
+  // its height and its up axis stay where the placement put them, both ways
+  // (its rigid velocity along up and its turning about the horizontal axes
+  // relax them back at eq. 7's stiffness); 0 = they follow the fluid, as the
+  // paper (the `paper` preset).
   int anchor = 0;
   // Rest-shape blend at a target change (docs/CONTROL_UNITS.md, "Rest-shape
   // blend"): the rest shape morphs from where placement puts the control

@@ -45,11 +45,11 @@ void OpenClBackend::runShapeMatchStep(int tag) {
                    &bz = bl ? d.bz0.get() : d.z0.get();
   const cl::Buffer &fx = bl ? d.from_cx.get() : d.rest_cx.get(), &fy = bl ? d.from_cy.get() : d.rest_cy.get(),
                    &fz = bl ? d.from_cz.get() : d.rest_cz.get();
-  // The anchor acts (ff_anchor.h), as Controller::shapeMatchStep.
+  // "Up" for the anchor (ff_anchor.h; A.anchor: it acts), as Controller::shapeMatchStep.
   ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
-  const bool anchored = sm.anchor != 0 && ff_anchor_up(params_.fluid.gravity, &up);
+  ff_anchor_up(params_.fluid.gravity, &up);
   const FfShapeMatchArgs A = shapeMatchArgs(sm, params_.control.feedback, cl_uint(nc_), cl_uint(nclusters_),
-                                            w, anchored, boxMin(box_), boxMax(box_), tag);
+                                            w, params_.fluid.gravity, boxMin(box_), boxMax(box_), tag);
   auto run = [&](const auto&... args) {
     if (spread)
       launchGroups(d.queue(), frames, groups, local, args..., cl::Local(local * 15 * sizeof(float)));
@@ -66,12 +66,12 @@ void OpenClBackend::runShapeMatchStep(int tag) {
          d.com_z.get(), d.ccv_x.get(), d.ccv_y.get(), d.ccv_z.get(), d.ux.get(), d.uy.get(), d.uz.get(), A,
          d.gx.get(), d.gy.get(), d.gz.get());
   d.anchor_fix.ensure(d.ctx.context(), 9 * sizeof(float));
-  if (anchored) {
+  if (A.anchor) {
     const ControlSet& s = control_;
     launch(d.queue(), d.sm_anchor, 1, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
            d.cvz.get(), d.x0.get(), d.y0.get(), d.z0.get(), f4(s.rest_cx, s.rest_cy, s.rest_cz, 0.0f),
-           f4(s.anchor_x, s.anchor_y, s.anchor_z, float(sm.anchor)),
-           f4(up.x, up.y, up.z, ff_anchor_g(params_.fluid.gravity)), A, d.q.get(), d.anchor_fix.get());
+           f4(s.anchor_x, s.anchor_y, s.anchor_z, 0.0f), f4(up.x, up.y, up.z, 0.0f), A, d.q.get(),
+           d.anchor_fix.get());
   }
   launch(d.queue(), d.sm_integrate, nc_, d.cx.get(), d.cy.get(), d.cz.get(), d.cvx.get(), d.cvy.get(),
          d.cvz.get(), A, d.anchor_fix.get(), d.bad.get());

@@ -107,8 +107,7 @@ __kernel void sm_velocities(__global const float* x, __global const float* y, __
 }
 
 // The anchor's correction (ff_anchor.h), one work-item over the whole set:
-// out = dv, dw, com (9 floats). anchor.w is the mode (params.shape_matching.anchor),
-// up.w gravity's magnitude.
+// out = dv, dw, com (9 floats); the mode and gravity's magnitude come in A.
 __kernel void sm_anchor(__global const float* x, __global const float* y, __global const float* z,
                         __global const float* vx, __global const float* vy, __global const float* vz,
                         __global const float* x0, __global const float* y0, __global const float* z0,
@@ -118,13 +117,13 @@ __kernel void sm_anchor(__global const float* x, __global const float* y, __glob
   const ff_quat qw = A.nclusters > 0u ? q[0] : FF_Q(0.0f, 0.0f, 0.0f, 1.0f);
   const ff_anchor_fix f =
       ff_anchor_correction(x, y, z, vx, vy, vz, x0, y0, z0, A.n, FF_F3(rest_c.x, rest_c.y, rest_c.z),
-                           FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), (int)anchor.w, up.w,
+                           FF_F3(anchor.x, anchor.y, anchor.z), FF_F3(up.x, up.y, up.z), A.anchor, A.g,
                            A.alpha, A.h, qw, A.iterations);
   out[0] = f.dv.x, out[1] = f.dv.y, out[2] = f.dv.z, out[3] = f.dw.x, out[4] = f.dw.y, out[5] = f.dw.z;
   out[6] = f.com.x, out[7] = f.com.y, out[8] = f.com.z;
 }
 
-// The anchor's correction (A.anchored: from fix), integration and the container clamp.
+// The anchor's correction (A.anchor != 0: from fix), integration and the container clamp.
 __kernel void sm_integrate(__global float* x, __global float* y, __global float* z, __global float* vx,
                            __global float* vy, __global float* vz, FfShapeMatchArgs A,
                            __global const float* fix, __global int* bad) {
@@ -132,7 +131,7 @@ __kernel void sm_integrate(__global float* x, __global float* y, __global float*
   if (i >= A.n) return;
   ff_float3 v = FF_F3(vx[i], vy[i], vz[i]);
   const ff_float3 p = FF_F3(x[i], y[i], z[i]);
-  if (A.anchored)
+  if (A.anchor)
     v = ff_anchor_velocity(v, p, FF_F3(fix[0], fix[1], fix[2]), FF_F3(fix[3], fix[4], fix[5]),
                            FF_F3(fix[6], fix[7], fix[8]));
   int ok = 1;

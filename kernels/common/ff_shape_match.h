@@ -23,9 +23,10 @@ typedef struct {
   float w;                    /* the rest-shape blend's weight this step (ff_blend_weight) */
   float h, alpha;             /* the step and eq. 7's stiffness */
   float feedback, damping;    /* the fluid feedback's and the damping's relaxation */
+  float g;                    /* gravity's magnitude (the standing anchor's tilt rate) */
   uint n, nclusters;          /* control particles and clusters */
   int iterations;             /* ff_extract_rotation's iterations */
-  int anchored, tag;          /* the anchor acts; the phase's check tag */
+  int anchor, tag;            /* the anchor's mode where it acts (ff_anchor.h), else 0; the check tag */
 } FfShapeMatchArgs;
 
 /* The rest data of a control set at blend weight w (ff_blend_rest_at): the

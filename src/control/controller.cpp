@@ -307,12 +307,12 @@ bool Controller::shapeMatchStep() {
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);
   clusterGoals(set_, q_, cx_, cy_, cz_, gx_, gy_, gz_);
   clusterVelocities(set_, cvx_, cvy_, cvz_);
-  // The anchor acts: on, and there is gravity to tell "up" (ff_anchor.h).
+  // "Up", against gravity, for the anchor (ff_anchor.h; A.anchor: it acts).
   ff_float3 up = FF_F3(0.0f, 0.0f, 0.0f);
-  const bool anchored = sm_.anchor != 0 && ff_anchor_up(g_, &up);
+  ff_anchor_up(g_, &up);
   const FfShapeMatchArgs A =
-      shapeMatchArgs(sm_, cp_.feedback, uint32_t(n), uint32_t(set_.clusters.count()), set_.blendWeight(),
-                     anchored, bounded_ ? lo_ : nullptr, bounded_ ? hi_ : nullptr, 0);
+      shapeMatchArgs(sm_, cp_.feedback, uint32_t(n), uint32_t(set_.clusters.count()), set_.blendWeight(), g_,
+                     bounded_ ? lo_ : nullptr, bounded_ ? hi_ : nullptr, 0);
   const Clusters& cl = set_.clusters;
   // The velocities after damping, feedback and eq. 7.
 #pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
@@ -325,19 +325,18 @@ bool Controller::shapeMatchStep() {
   }
   // The anchor: the set's rigid motion along up and its tilt (ff_anchor.h).
   ff_anchor_fix fix{};
-  if (anchored)
+  if (A.anchor)
     fix = ff_anchor_correction(set_.x.data(), set_.y.data(), set_.z.data(), set_.vx.data(), set_.vy.data(),
                                set_.vz.data(), set_.x0.data(), set_.y0.data(), set_.z0.data(), uint32_t(n),
                                FF_F3(set_.rest_cx, set_.rest_cy, set_.rest_cz),
-                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, sm_.anchor,
-                               ff_anchor_g(g_), A.alpha, A.h,
-                               q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], A.iterations);
+                               FF_F3(set_.anchor_x, set_.anchor_y, set_.anchor_z), up, A.anchor, A.g, A.alpha,
+                               A.h, q_.empty() ? FF_Q(0.0f, 0.0f, 0.0f, 1.0f) : q_[0], A.iterations);
   int bad = 0;
 #pragma omp parallel for schedule(static) reduction(| : bad) if (n > kParallelLightLoop)
   for (long i = 0; i < n; ++i) {
     ff_float3 v = FF_F3(set_.vx[i], set_.vy[i], set_.vz[i]);
     const ff_float3 x = FF_F3(set_.x[i], set_.y[i], set_.z[i]);
-    if (anchored) v = ff_anchor_velocity(v, x, fix.dv, fix.dw, fix.com);
+    if (A.anchor) v = ff_anchor_velocity(v, x, fix.dv, fix.dw, fix.com);
     int ok = 1;
     const ff_float3 nx = ff_sm_move(x, &v, A, &ok);
     set_.x[i] = nx.x, set_.y[i] = nx.y, set_.z[i] = nx.z;

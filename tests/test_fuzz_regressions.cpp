@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -156,6 +157,31 @@ TEST(FuzzRegressions, PlyFileWithBytesBeforeTheMagicIsRefused) {
     const std::string what = replay("mesh_ply", kFuzzDir / "regressions" / "mesh_ply" / name, tmp);
     EXPECT_NE(what.find("garbled PLY header (line 1): the first line must be 'ply'"), std::string::npos)
         << what;
+  }
+}
+
+TEST(FuzzRegressions, PlyHeaderLineWithACarriageReturnInsideIsRefused) {
+  // "\n\rend_header\n": the checks took "\rend_header" for end_header, and
+  // assimp, which also ends a line at a lone CR, crashed reading the binary
+  // data behind it (a fuzzed file). The same header with plain line ends is
+  // read (below), so the CR is what is refused.
+  fftest::TempDir tmp("fuzz_ply_cr");
+  const std::filesystem::path crash =
+      kFuzzDir / "regressions" / "mesh_ply" / "carriage_return_before_end_header_crash.ply";
+  const std::string what = replay("mesh_ply", crash, tmp);
+  EXPECT_NE(what.find("garbled PLY header (line 6): a control character inside a line"), std::string::npos)
+      << what;
+  std::ifstream in(crash, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t cr = bytes.find("\n\rend_header");
+  ASSERT_NE(cr, std::string::npos);
+  bytes.erase(cr + 1, 1);
+  const std::filesystem::path plain = tmp / "plain.ply";
+  std::ofstream(plain, std::ios::binary) << bytes;
+  try {
+    ff::loadMesh(plain.string());
+  } catch (const ff::Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("garbled PLY header"), std::string::npos) << e.what();
   }
 }
 

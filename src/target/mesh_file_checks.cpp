@@ -125,6 +125,14 @@ PlyHeader parsePlyHeader(const std::string& path, const std::string& head) {
     std::string line = head.substr(pos, eol - pos);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     pos = eol + 1;
+    // Only a CR before the LF ends a line here; assimp also takes a CR
+    // elsewhere as a line end, so it read "\rend_header" otherwise and
+    // crashed on what followed (a fuzzed binary file). No other control
+    // character than a tab belongs in a header line either (line 1 must be
+    // "ply" alone, which its own check says).
+    for (const char c : line)
+      if (line_no > 1 && (unsigned char)c < 0x20 && c != '\t')
+        garbled(line_no, "a control character inside a line");
     const std::vector<std::string> w = words(line);
     if (line_no == 1) {
       if (w.size() != 1 || !isPlyMagic(w[0])) garbled(line_no, "the first line must be 'ply'");

@@ -52,8 +52,9 @@ void ClDfsphSolver::ensure(const ClFluidRefs& f) {
   cl::CommandQueue& q = *f.queue;
   n_ = f.n;
   const size_t bytes = padded8(n_) * sizeof(float);
-  for (DeviceBuffer* b : {&alpha_, &wgx_, &wgy_, &wgz_, &inc_, &b_, &rate_buf_, &dux_, &duy_, &duz_, &ux_,
-                          &uy_, &uz_, &k_[0][0], &k_[0][1], &k_[1][0], &k_[1][1]})
+  for (DeviceBuffer* b : {&alpha_, &wgx_, &wgy_,     &wgz_,     &vax_,     &vay_,      &vaz_,    &q_,   &wpx_,
+                          &wpy_,   &wpz_, &alpha_p_, &inc_,     &b_,       &rate_buf_, &dux_,    &duy_, &duz_,
+                          &ux_,    &uy_,  &uz_,      &k_[0][0], &k_[0][1], &k_[1][0],  &k_[1][1]})
     b->ensure(c, bytes);
   bulk_.ensure(c, padded8(n_));
   // k starts at 0 (as the OpenMP solver's); the 8-wide loads read the
@@ -98,10 +99,11 @@ void ClDfsphSolver::computeDensity(const ClFluidRefs& f, const FluidParams& p, c
   if (f.lanes)
     launch(*f.queue, factor_lanes_, padded8(f.n) / 8, *f.x, *f.y, *f.z, cl_uint(f.n), g.start.get(),
            g.geom.geo(), g.geom.dims(), a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(),
-           bulk_.get(), *f.bad, cl_int(tag));
+           vax_.get(), vay_.get(), vaz_.get(), q_.get(), bulk_.get(), *f.bad, cl_int(tag));
   else
     launch(*f.queue, factor_, f.n, *f.x, *f.y, *f.z, cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(),
-           a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), bulk_.get(), *f.bad, cl_int(tag));
+           a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), vax_.get(), vay_.get(), vaz_.get(),
+           q_.get(), bulk_.get(), *f.bad, cl_int(tag));
   record(f, "density", "dfsph factor", &t0);
 }
 
@@ -113,15 +115,18 @@ void ClDfsphSolver::sources(const ClFluidRefs& f, bool density, float dt, bool g
   const size_t local = source_.pow2_local, groups = sourceGroups(f.n, local);
   launchGroups(*f.queue, source_, groups, local, rate_buf_.get(), *f.rho, bulk_.get(), *f.x, *f.y, *f.z,
                ux_.get(), uy_.get(), uz_.get(), args_, cl_uint(f.n), cl_int(density), 1.0f / rho0_, dt,
-               b_.get(), partial_.get(), cl::Local(local * sizeof(double)), state_.get(), cl_int(gated));
+               b_.get(), partial_.get(), cl::Local(local * sizeof(double)), state_.get(), cl_int(gated),
+               alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), vax_.get(), vay_.get(), vaz_.get(), q_.get(),
+               wpx_.get(), wpy_.get(), wpz_.get(), alpha_p_.get());
 }
 
-void ClDfsphSolver::applyVelocityChange(const ClFluidRefs& f, const DeviceBuffer& k, float scale,
-                                        bool gated) {
+void ClDfsphSolver::applyVelocityChange(const ClFluidRefs& f, bool density, const DeviceBuffer& k,
+                                        float scale, bool gated) {
   const DeviceGrid& g = *f.grid;
+  const DeviceBuffer &gx = density ? wpx_ : wgx_, &gy = density ? wpy_ : wgy_, &gz = density ? wpz_ : wgz_;
   launch(*f.queue, f.lanes ? kappa_lanes_ : kappa_, f.lanes ? padded8(f.n) / 8 : f.n, *f.x, *f.y, *f.z,
-         cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(), args_, k.get(), wgx_.get(), wgy_.get(),
-         wgz_.get(), dux_.get(), duy_.get(), duz_.get(), state_.get(), cl_int(gated));
+         cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(), args_, k.get(), gx.get(), gy.get(),
+         gz.get(), dux_.get(), duy_.get(), duz_.get(), state_.get(), cl_int(gated));
   launch(*f.queue, apply_, f.n, ux_.get(), uy_.get(), uz_.get(), dux_.get(), duy_.get(), duz_.get(),
          cl_uint(f.n), 1.0f / scale, state_.get(), cl_int(gated));
 }
@@ -137,7 +142,7 @@ int ClDfsphSolver::iterate(const ClFluidRefs& f, const FluidParams& p, bool dens
   // Warm start where the particle compresses now, then the first test.
   sources(f, density, dt, false);
   launch(q, warm_, f.n, k.get(), b_.get(), cl_uint(f.n), warm);
-  applyVelocityChange(f, k, scale, false);
+  applyVelocityChange(f, density, k, scale, false);
   sources(f, density, dt, false);
   auto check = [&](int first) {
     launchGroups(q, check_, 1, 1, partial_.get(), cl_uint(groups), cl_uint(f.n), tol_hi, tol_lo,
@@ -151,9 +156,9 @@ int ClDfsphSolver::iterate(const ClFluidRefs& f, const FluidParams& p, bool dens
   int batch = p.max_iterations > 0 ? std::max(min_iterations, 1) : 0;
   for (;;) {
     for (int b = 0; b < batch; ++b) {
-      launch(q, increment_, f.n, k.get(), inc_.get(), b_.get(), alpha_.get(), cl_uint(f.n), state_.get(),
-             cl_int(1));
-      applyVelocityChange(f, inc_, scale, true);
+      launch(q, increment_, f.n, k.get(), inc_.get(), b_.get(), density ? alpha_p_.get() : alpha_.get(),
+             cl_uint(f.n), state_.get(), cl_int(1));
+      applyVelocityChange(f, density, inc_, scale, true);
       sources(f, density, dt, true);
       check(0);
     }
@@ -208,8 +213,9 @@ void ClDfsphSolver::take(long& iterations, long& capped) {
 size_t ClDfsphSolver::memoryBytes() const {
   size_t bytes = 0;
   for (const DeviceBuffer* b :
-       {&alpha_, &wgx_, &wgy_, &wgz_, &bulk_,    &inc_,   &b_,       &rate_buf_, &dux_,     &duy_,
-        &duz_,   &ux_,  &uy_,  &uz_,  &partial_, &state_, &k_[0][0], &k_[0][1],  &k_[1][0], &k_[1][1]})
+       {&alpha_, &wgx_,     &wgy_,     &wgz_,   &vax_,     &vay_,      &vaz_,     &q_,      &wpx_, &wpy_,
+        &wpz_,   &alpha_p_, &bulk_,    &inc_,   &b_,       &rate_buf_, &dux_,     &duy_,    &duz_, &ux_,
+        &uy_,    &uz_,      &partial_, &state_, &k_[0][0], &k_[0][1],  &k_[1][0], &k_[1][1]})
     bytes += b->capacity();
   return bytes;
 }

@@ -74,12 +74,16 @@ class ClDfsphSolver {
   int iterate(const ClFluidRefs& f, const FluidParams& p, bool density, float dt, double tol,
               int min_iterations, float warm, int which);
   void sources(const ClFluidRefs& f, bool density, float dt, bool gated);
-  void applyVelocityChange(const ClFluidRefs& f, const DeviceBuffer& k, float scale, bool gated);
+  // The density solve pushes with wp*_ (the walls' gradient at x + dt u), the divergence solve with wg*_.
+  void applyVelocityChange(const ClFluidRefs& f, bool density, const DeviceBuffer& k, float scale,
+                           bool gated);
 
   ClKernel factor_, factor_lanes_, rate_, rate_lanes_, kappa_, kappa_lanes_;
   ClKernel source_, check_, warm_, increment_, apply_, predict_, finish_, reorder_;
   DeviceBuffer alpha_, wgx_, wgy_, wgz_, bulk_;
-  DeviceBuffer k_[2][2];  // [double buffer for the reorder][kd, kv]
+  DeviceBuffer vax_, vay_, vaz_, q_;        // the fluid's parts of the factor (ff_dfsph_factor_at)
+  DeviceBuffer wpx_, wpy_, wpz_, alpha_p_;  // the density solve's wall gradient and factor at x + dt u
+  DeviceBuffer k_[2][2];                    // [double buffer for the reorder][kd, kv]
   int kcur_ = 0;
   DeviceBuffer inc_, b_, rate_buf_, dux_, duy_, duz_, ux_, uy_, uz_, partial_, state_;
   size_t n_ = 0;  // particles the buffers hold (k restarts from 0 when it changes)

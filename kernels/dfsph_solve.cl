@@ -23,8 +23,10 @@ typedef float dfsph_sum_t;
 #endif
 
 // b = the compression the velocities still cause (density: after dt, from
-// rho and the walls' share at x + dt u; else the divergence where the
-// support is filled), and the sum of b
+// rho and the walls' share at x + dt u, and the walls' gradient wp there and
+// the factor alpha_p with it for this iteration's push and increment,
+// ff_dfsph_wall_predicted; else the divergence where the support is filled),
+// and the sum of b
 // per work-group into partial[group] (local size a power of two, at most
 // 8 bytes of local memory per work-item).
 __kernel void dfsph_source(__global const float* rate, __global const float* rho, __global const uchar* bulk,
@@ -32,7 +34,11 @@ __kernel void dfsph_source(__global const float* rate, __global const float* rho
                            __global const float* ux, __global const float* uy, __global const float* uz,
                            FfDfsphArgs P, uint n, int density, float inv_rho0, float dt, __global float* b,
                            __global dfsph_sum_t* partial, __local dfsph_sum_t* tmp, __global const int* state,
-                           int gated) {
+                           int gated, __global const float* alpha, __global const float* wgx,
+                           __global const float* wgy, __global const float* wgz, __global const float* vax,
+                           __global const float* vay, __global const float* vaz, __global const float* q,
+                           __global float* wpx, __global float* wpy, __global float* wpz,
+                           __global float* alpha_p) {
   if (gated && state[0]) return;  // the same for every work-item: no barrier is skipped by some only
   dfsph_sum_t sum = 0.0f;
   for (uint i = get_global_id(0); i < n; i += get_global_size(0)) {
@@ -40,7 +46,15 @@ __kernel void dfsph_source(__global const float* rate, __global const float* rho
     if (density) {
       const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]},
                   lo[3] = {P.lo[0], P.lo[1], P.lo[2]}, hi[3] = {P.hi[0], P.hi[1], P.hi[2]};
-      const float rem = ff_dfsph_wall_remainder(pos, u, dt, lo, hi, P.spacing, P.vol, P.h, P.inv_h);
+      float p1[3], g1[3] = {wgx[i], wgy[i], wgz[i]}, rem = 0.0f, al = alpha[i];
+      if (ff_dfsph_wall_near(pos, u, dt, lo, hi, P.h, p1)) {
+        float g0[3];
+        const float s0 = ff_dfsph_wall(pos, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g0);
+        rem = ff_dfsph_wall_predicted(p1, s0, g0, u, dt, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g1);
+        const float va[3] = {vax[i], vay[i], vaz[i]};
+        al = ff_dfsph_factor_at(g1, va, q[i], P.eps);
+      }
+      wpx[i] = g1[0], wpy[i] = g1[1], wpz[i] = g1[2], alpha_p[i] = al;
       bi = ff_dfsph_density_source(rho[i] * inv_rho0 + rem, rate[i], dt);
     } else {
       bi = ff_dfsph_divergence_source(rate[i], bulk[i]);

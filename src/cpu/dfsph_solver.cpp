@@ -137,7 +137,7 @@ void box(const ContainerDesc& c, float* lo, float* hi) {
 bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const ContainerDesc& c) {
   const size_t n = f.size();
   f.rho.resize(n), f.p.resize(n);
-  for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_}) a->resize(n);
+  for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_}) a->resize(n);
   bulk_.resize(n);
   if (kd_.size() != n) kd_.assign(n, 0.0f), kv_.assign(n, 0.0f);
   const Kernel kr(p.smoothing_radius);
@@ -148,6 +148,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   // The neighbours of a full support in the rest lattice.
   const float full = 4.18879f * kr.h * kr.h * kr.h / vol_;
   const float eps = 1e-6f * kr.inv_h * kr.inv_h;
+  eps_ = eps;
   const float rho0 = p.rest_density, vol = vol_;
   float lo[3], hi[3];
   box(c, lo, hi);
@@ -164,10 +165,11 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       const float pos[3] = {s.x[i], s.y[i], s.z[i]}, a[3] = {sums[8 + l], sums[16 + l], sums[24 + l]};
-      float rho_hat, wg[3];
-      alpha_[i] = ff_dfsph_factor_share(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a,
-                                        sums[32 + l], eps, &rho_hat, wg, &wall_[i]);
+      float rho_hat, wg[3], va[3];
+      alpha_[i] = ff_dfsph_factor_parts(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a,
+                                        sums[32 + l], eps, &rho_hat, wg, &wall_[i], va, &q_[i]);
       wgx_[i] = wg[0], wgy_[i] = wg[1], wgz_[i] = wg[2];
+      vax_[i] = va[0], vay_[i] = va[1], vaz_[i] = va[2];
       f.rho[i] = rho0 * rho_hat;
       const float share = rho_hat - vol * sums[l];  // the walls' share
       bulk_[i] = uint8_t(ff_dfsph_bulk(sums[40 + l], share, full, kBulkShare));
@@ -191,20 +193,24 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
     for (uint32_t i = b; i < e; ++i) {
       const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
       const float rate = ff_dfsph_rate(rs[i - b], vol_, u, wg);
+      float alpha = alpha_[i];
       if (density) {
-        // The density after dt, with the walls' share at x + dt u.
-        // ff_dfsph_wall_remainder with S(x) and grad S(x) of the density phase.
+        // The density after dt, with the walls' share at x + dt u, and the
+        // walls' gradient there for this iteration's push and factor
+        // (ff_dfsph_wall_predicted; S(x) and grad S(x) of the density phase).
         const float pos[3] = {s.x[i], s.y[i], s.z[i]};
-        float p1[3];
-        const float rem = ff_dfsph_wall_near(pos, u, dt, lo_, hi_, H, p1)
-                              ? ff_dfsph_wall_remainder_from(p1, wall_[i], wg, u, dt, lo_, hi_, vol_spacing_,
-                                                             vol_, H, inv_h)
-                              : 0.0f;
+        float p1[3], g1[3] = {wg[0], wg[1], wg[2]}, rem = 0.0f;
+        if (ff_dfsph_wall_near(pos, u, dt, lo_, hi_, H, p1)) {
+          rem = ff_dfsph_wall_predicted(p1, wall_[i], wg, u, dt, lo_, hi_, vol_spacing_, vol_, H, inv_h, g1);
+          const float va[3] = {vax_[i], vay_[i], vaz_[i]};
+          alpha = ff_dfsph_factor_at(g1, va, q_[i], eps_);
+        }
+        wpx_[i] = g1[0], wpy_[i] = g1[1], wpz_[i] = g1[2];
         b_[i] = ff_dfsph_density_source(f.rho[i] * inv_rho0 + rem, rate, dt);
       } else {
         b_[i] = ff_dfsph_divergence_source(rate, bulk_[i]);
       }
-      inc_[i] = ff_dfsph_increment(b_[i], alpha_[i]);  // the next iteration's, if there is one
+      inc_[i] = ff_dfsph_increment(b_[i], alpha);  // the next iteration's, if there is one
     }
   });
   double err = 0.0;  // summed in the particles' order, as before the passes were merged
@@ -213,15 +219,17 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   return n ? err / double(n) : 0.0;
 }
 
-void DfsphSolver::applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale,
-                                      std::vector<float>* total) {
+void DfsphSolver::applyVelocityChange(const CpuFluid& f, bool density, const std::vector<float>& k,
+                                      float scale, std::vector<float>* total) {
   const float inv = 1.0f / scale;
+  const float *gx = density ? wpx_.data() : wgx_.data(), *gy = density ? wpy_.data() : wgy_.data(),
+              *gz = density ? wpz_.data() : wgz_.data();
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float ks[24];
     kappaSums(f, cache_, gi, k.data(), b, e, ks);
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
-      const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
+      const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {gx[i], gy[i], gz[i]};
       float du[3];
       ff_dfsph_velocity_change(sum, k[i], vol_, wg, du);
       ux_[i] += du[0] * inv, uy_[i] += du[1] * inv, uz_[i] += du[2] * inv;
@@ -238,7 +246,7 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
   // Warm start: the last substep's k where this one compresses too.
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) k[size_t(i)] = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
-  applyVelocityChange(f, k, scale, nullptr);
+  applyVelocityChange(f, density, k, scale, nullptr);
   err = sources(f, density, dt);
   int it = 0;
   for (;;) {
@@ -250,7 +258,7 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
     // One Jacobi iteration: the increment that removes each particle's
     // remaining compression on its own (sources() set it), added to k and
     // applied to the velocities.
-    applyVelocityChange(f, inc_, scale, &k);
+    applyVelocityChange(f, density, inc_, scale, &k);
     err = sources(f, density, dt);
     ++it;
   }
@@ -264,7 +272,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
     throw Error("dfsph: the pressure phase ran before the density phase");
   if (n == 0) return true;
   FluidState& s = f.s;
-  for (auto* a : {&b_, &inc_}) a->resize(size_t(n));
+  for (auto* a : {&b_, &inc_, &wpx_, &wpy_, &wpz_}) a->resize(size_t(n));
   rho0_ = p.rest_density;
   box(c, lo_, hi_);
   ux_ = s.vx, uy_ = s.vy, uz_ = s.vz;
@@ -336,8 +344,8 @@ void DfsphSolver::loadState(StateReader& r, size_t n) {
 
 size_t DfsphSolver::memoryBytes() const {
   size_t floats = 0;
-  for (const auto* v :
-       {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &kd_, &kv_, &b_, &inc_, &ux_, &uy_, &uz_, &scratch_})
+  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_,  &wpx_,
+                        &wpy_,   &wpz_, &kd_,  &kv_,  &b_,    &inc_, &ux_,  &uy_,  &uz_, &scratch_})
     floats += v->capacity();
   return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
 }

@@ -43,13 +43,18 @@ class DfsphSolver : public PressureSolver {
   double sources(const CpuFluid& f, bool density, float dt);
   // u_ += the velocity change of k, over `scale`; and total += k if given
   // (one pass over the neighbour cache).
-  void applyVelocityChange(const CpuFluid& f, const std::vector<float>& k, float scale,
+  // The density solve pushes with the walls' gradient at the predicted
+  // position (wp*_, set by sources()), the divergence solve with grad S(x).
+  void applyVelocityChange(const CpuFluid& f, bool density, const std::vector<float>& k, float scale,
                            std::vector<float>* total);
 
   float vol_ = 0.0f;                            // the lattice volume V (ff_dfsph_lattice_volume)
   float vol_spacing_ = 0.0f, vol_h_ = 0.0f;     // what vol_ was computed for
   std::vector<float> alpha_, wgx_, wgy_, wgz_;  // this substep's factors and wall gradients
   std::vector<float> wall_;                     // and the walls' density shares S(x_i)
+  std::vector<float> vax_, vay_, vaz_, q_;      // the fluid's parts of the factor (ff_dfsph_factor_at)
+  std::vector<float> wpx_, wpy_, wpz_;          // the density solve's wall gradient at x + dt u
+  float eps_ = 0.0f;                            // the factor's floor
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   bool cache_current_ = false;                  // from the density phase until the grid phase reorders

@@ -46,6 +46,11 @@ std::vector<uint32_t>& threadSpans() {
   return spans;
 }
 
+std::vector<uint32_t>& threadHits() {
+  static thread_local std::vector<uint32_t> hits;
+  return hits;
+}
+
 struct ScaleSums {
   float w, ux, uy, uz;
 };
@@ -85,34 +90,61 @@ FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const floa
 // most 8, one row of the fluid grid) as lanes, the control particles in the
 // control grid's ranges within reach broadcast one at a time, in ascending
 // order: each lane sums as kernels/control_forces.cl does for its particle.
+// First the candidates that some lane reaches (branch-free: Lanes::any, see
+// simd8.h), then the sums over those alone: a candidate that no lane reaches
+// adds exactly 0 to every lane (as the kernel's any() skips it).
 // out: 7 x 8 floats (attraction x, y, z, sum of W, sum of W v x, y, z).
-FF_SIMD_CLONES void forceSums(const float* x, const float* y, const float* z, uint32_t b, uint32_t e,
-                              const UniformGrid& cp_grid, const float* sx, const float* sy, const float* sz,
-                              const float* ss, const float* svx, const float* svy, const float* svz,
-                              const float* sr2, const float* scoef, float r, float* out) {
+struct ForceSumsArgs {
+  const float *x, *y, *z;  // the sorted fluid
+  const UniformGrid* cp_grid;
+  const float *sx, *sy, *sz, *ss, *svx, *svy, *svz, *sr2, *scoef;  // control particles in cp_grid order
+  float r;                                                         // the largest radius
+};
+template <class Lanes>
+[[gnu::always_inline]] inline void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
   const int n = int(e - b);
-  const f8 xe = simd::loadN(x + b, n, kFar), ye = simd::loadN(y + b, n, kFar),
-           ze = simd::loadN(z + b, n, kFar);
+  const f8 xe = simd::loadN(A.x + b, n, kFar), ye = simd::loadN(A.y + b, n, kFar),
+           ze = simd::loadN(A.z + b, n, kFar);
   const float lo[3] = {simd::hmin(xe, n), simd::hmin(ye, n), simd::hmin(ze, n)};
   const float hi[3] = {simd::hmax(xe, n), simd::hmax(ye, n), simd::hmax(ze, n)};
   std::vector<uint32_t>& spans = threadSpans();
-  cp_grid.rangesNear(lo, hi, r, spans);  // r: the largest radius
-  const f8 zero = simd::splat(0.0f);
-  f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
+  A.cp_grid->rangesNear(lo, hi, A.r, spans);
+  const float *sx = A.sx, *sy = A.sy, *sz = A.sz, *sr2 = A.sr2;
+  std::vector<uint32_t>& hits = threadHits();
+  size_t most = 0;
+  for (size_t s = 0; s < spans.size(); s += 2) most += spans[s + 1] - spans[s];
+  if (hits.size() < most) hits.resize(most);
+  uint32_t* hit = hits.data();
+  size_t nh = 0;
   for (size_t s = 0; s < spans.size(); s += 2)
     for (uint32_t k = spans[s]; k < spans[s + 1]; ++k) {
       const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
-      const f8 d2 = dx * dx + dy * dy + dz * dz;
-      if (!simd::any(d2 < sr2[k])) continue;  // no lane in reach: every term is 0
-      const f8 w = ff_poly6(d2, sr2[k], scoef[k]);
-      const f8 a = ff_attraction_factor(simd::sqrt8(d2), ss[k], w);
-      fax += dx * a, fay += dy * a, faz += dz * a;
-      wsum += w;
-      vsx += w * svx[k], vsy += w * svy[k], vsz += w * svz[k];
+      hit[nh] = k;
+      nh += Lanes::any(dx * dx + dy * dy + dz * dz < sr2[k]) ? 1 : 0;
     }
+  const f8 zero = simd::splat(0.0f);
+  f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
+  for (size_t q = 0; q < nh; ++q) {
+    const uint32_t k = hit[q];
+    const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
+    const f8 d2 = dx * dx + dy * dy + dz * dz;
+    const f8 w = ff_poly6(d2, sr2[k], A.scoef[k]);
+    const f8 a = ff_attraction_factor(simd::sqrt8(d2), A.ss[k], w);
+    fax += dx * a, fay += dy * a, faz += dz * a;
+    wsum += w;
+    vsx += w * A.svx[k], vsy += w * A.svy[k], vsz += w * A.svz[k];
+  }
   const f8 sums[7] = {fax, fay, faz, wsum, vsx, vsy, vsz};
   for (int k = 0; k < 7; ++k) simd::storeN(out + 8 * k, sums[k], n);
 }
+void forceSums(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
+  forceSumsOf<simd::PortableLanes>(A, b, e, out);
+}
+#if FF_SIMD_AVX2
+FF_TARGET_AVX2 void forceSumsAvx2(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
+  forceSumsOf<simd::Avx2Lanes>(A, b, e, out);
+}
+#endif
 
 }  // namespace
 
@@ -209,13 +241,20 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   const std::vector<uint32_t>& groups = *sf.groups;
   const long ngroups = long(groups.size() / 2);
   reached_.assign(f.n, 0);
+  const ForceSumsArgs fs{sf.x,          sf.y,       sf.z,        &cp_grid_,   sx_.data(),  sy_.data(),
+                         sz_.data(),    ss_.data(), svx_.data(), svy_.data(), svz_.data(), sr2_.data(),
+                         scoef_.data(), r};
+#if FF_SIMD_AVX2
+  auto* const sums_of = simd::hasAvx2() ? forceSumsAvx2 : forceSums;
+#else
+  auto* const sums_of = forceSums;
+#endif
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {
     const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
     float sums[56];
-    forceSums(sf.x, sf.y, sf.z, b, e, cp_grid_, sx_.data(), sy_.data(), sz_.data(), ss_.data(), svx_.data(),
-              svy_.data(), svz_.data(), sr2_.data(), scoef_.data(), r, sums);
+    sums_of(fs, b, e, sums);
     for (uint32_t k = b; k < e; ++k) {
       const size_t l = k - b;
       const float wsum = sums[24 + l];

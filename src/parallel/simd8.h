@@ -83,6 +83,38 @@ inline bool finiteN(f8 v, int n) {
 // the CPU has it, and the portable default.
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 #define FF_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#define FF_SIMD_AVX2 1
 #else
 #define FF_SIMD_CLONES
+#define FF_SIMD_AVX2 0
 #endif
+
+// Lane tests by instruction set, for a hot loop whose lane test is most of
+// its work: the loop is written once as an always-inline template on one of
+// these and instantiated in a plain function and in one built for AVX2
+// (target("avx2")), called where simd::hasAvx2(). PortableLanes compiles
+// anywhere; Avx2Lanes::any is one vmovmskps (simd::any goes through four
+// general-purpose registers) and may only run inside AVX2 code. Both test the
+// same bits, so the results are the same.
+namespace ff::simd {
+struct PortableLanes {
+  static bool any(i8 m) { return simd::any(m); }
+};
+#if FF_SIMD_AVX2
+#pragma GCC push_options
+#pragma GCC target("avx2")
+struct Avx2Lanes {
+  static inline bool any(i8 m) { return __builtin_ia32_movmskps256((f8)m) != 0; }
+};
+#pragma GCC pop_options
+inline bool hasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+#define FF_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+inline bool hasAvx2() {
+  return false;
+}
+#endif
+}  // namespace ff::simd

@@ -21,11 +21,8 @@ struct Made {
   double voxel = 0.0;   // their spacing
 };
 
-// A 16^3 block on the water preset; `region` picks part of it; a sphere target
-// without a count.
-Made make(const ff::RegionDesc& region) {
-  ff::SceneDesc s = fftest::blockScene(ff::Vec3(0.3f, 0.3f, 0.3f), ff::Vec3(0.1f, 0.0f, 0.1f), 16, 16, 16);
-  s.params = ff::presetParams("water");
+// The scene `s` with `region` and a sphere target without a count.
+Made madeOf(ff::SceneDesc s, const ff::RegionDesc& region) {
   s.region = region;
   s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere)});
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(2));
@@ -34,6 +31,13 @@ Made make(const ff::RegionDesc& region) {
   m.controls = sim.target()->reference.size();
   m.voxel = double(sim.target()->grid.voxel);
   return m;
+}
+
+// A 16^3 block on the water preset; `region` picks part of it.
+Made make(const ff::RegionDesc& region) {
+  ff::SceneDesc s = fftest::blockScene(ff::Vec3(0.3f, 0.3f, 0.3f), ff::Vec3(0.1f, 0.0f, 0.1f), 16, 16, 16);
+  s.params = ff::presetParams("water");
+  return madeOf(s, region);
 }
 
 ff::RegionDesc sphereRegion(float radius) {
@@ -100,6 +104,58 @@ TEST(AutoControl, ASmallRegionStillGetsAShape) {
   // factor 1.25 from cbrt(n / 64) spacings to hold the volume (88 here).
   EXPECT_GE(double(small.controls), 0.8 * 64.0);
   EXPECT_LT(small.voxel, 1.55 * kSpacing / 1.25);
+}
+
+// The water preset as it comes, a scene of 12,000 fluid particles (the
+// Table 1 block, 20 x 30 x 20) and the same block of fluid at about 2 and 4
+// times the particles (the spacing divided by the cube root of 1.98 and 4.1,
+// mass and smoothing radius with it), a sphere of all the fluid without a
+// count. The control particles are to follow the fluid's volume, not its
+// particle count: the same count at every resolution, about auto_count for
+// all of the scene's fluid (with one control particle per 1.55 fluid
+// spacings, as before, it was 2 and 4 times as many), their volume still
+// the fluid's; a quarter of the fluid at 2x gets a quarter of them.
+Made makeAt(int nx, int ny, int nz, const ff::RegionDesc& region = ff::RegionDesc()) {
+  const ff::Params water = ff::presetParams("water");
+  const double scale = 20.0 / double(nx);  // spacing relative to the 20 x 30 x 20 block's
+  ff::SceneDesc s =
+      fftest::blockScene(ff::Vec3(0.4f, 0.4f, 0.4f), ff::Vec3(0.137f, 0.0f, 0.137f), nx, ny, nz);
+  s.params = water;
+  s.params.fluid.particle_mass *= float(scale * scale * scale);
+  s.params.fluid.smoothing_radius *= float(scale);
+  const Made m = madeOf(s, region);
+  const double spacing = double(s.params.fluid.restSpacing());
+  const double controls = double(m.controls) * m.voxel * m.voxel * m.voxel;
+  EXPECT_NEAR(controls / (double(m.fluid) * spacing * spacing * spacing), 1.0, 0.03)
+      << m.controls << " control particles at " << m.voxel << " m";
+  return m;
+}
+
+TEST(AutoControl, TheCountFollowsTheFluidsVolumeNotItsParticleCount) {
+  const int auto_count = ff::presetParams("water").control.auto_count;
+  ASSERT_GT(auto_count, 0);
+  const Made x1 = makeAt(20, 30, 20), x2 = makeAt(25, 38, 25), x4 = makeAt(32, 48, 32);
+  std::printf("1x: %ld fluid, %zu control particles; 2x: %ld, %zu; 4x: %ld, %zu (auto_count %d)\n", x1.fluid,
+              x1.controls, x2.fluid, x2.controls, x4.fluid, x4.controls, auto_count);
+  ASSERT_EQ(x2.fluid, 23750);
+  ASSERT_EQ(x4.fluid, 49152);
+  // 12,000 fluid particles at one control particle per 1.55 fluid spacings
+  // (12,000 / 1.55^3 = 3222) is the preset's count, within the 1 % the
+  // volume search moves it and the 3 % of the volume check above.
+  EXPECT_NEAR(double(x1.controls) / (12000.0 / (1.55 * 1.55 * 1.55)), 1.0, 0.03);
+  for (const Made* m : {&x2, &x4}) {
+    EXPECT_NEAR(double(m->controls) / double(x1.controls), 1.0, 0.04);
+    EXPECT_NEAR(double(m->controls) / double(auto_count), 1.0, 0.04);
+  }
+  ff::RegionDesc quarter;  // the bottom quarter of the block's 38 layers at 2x
+  quarter.kind = ff::RegionDesc::Kind::Box;
+  quarter.min = ff::Vec3(0.0f, 0.0f, 0.0f);
+  quarter.max = ff::Vec3(0.4f, 9.5f * float(kSpacing * 20.0 / 25.0), 0.4f);
+  const Made part = makeAt(25, 38, 25, quarter);
+  std::printf("2x, the bottom quarter: %ld fluid, %zu control particles\n", part.fluid, part.controls);
+  ASSERT_NEAR(double(part.fluid) / double(x2.fluid), 0.25, 0.02);
+  EXPECT_NEAR(double(part.controls) / double(x2.controls), double(part.fluid) / double(x2.fluid),
+              0.25 * 0.15);
 }
 
 }  // namespace

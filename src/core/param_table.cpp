@@ -115,6 +115,11 @@ const std::vector<ParamInfo>& paramTable() {
       {"control", "velocity_rate", T::Real, 0.0, 1e3, false,
        "normalised velocity force (normalise = 1): relaxation rate in units of sqrt(g / radius)",
        FF_FIELD(control.velocity_rate)},
+      {"control", "auto_count", T::Integer, 0, 100000000, false,
+       "> 0: a target without control_count or voxel_size gets at most this many control particles for the "
+       "scene's whole fluid (a region its share by volume), whatever the particle count; 0: one per 1.55 "
+       "fluid spacings",
+       FF_FIELD(control.auto_count)},
 
       {"shape_matching", "stiffness", T::Real, 0.0, 1.0, false, "alpha of eq. 7", FF_FIELD(shape.stiffness)},
       {"shape_matching", "time_step", T::Real, 1e-6, 1.0, false,

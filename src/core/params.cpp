@@ -128,6 +128,13 @@ Params waterParams() {
   // second (docs/CONTROL_UNITS.md, "Shape-matching clock"): 0.0904 of it is
   // the paper's 5 ms at the paper's 0.03 m radius.
   p.shape.time_step_fall = 0.0904f;
+  // The derived control count follows the scene's fluid volume, not its
+  // particle count (docs/CONTROL_UNITS.md, "How many control particles"):
+  // 12,000 / 1.55^3 = 3222 control particles, the default voxel's count for
+  // the Table 1 scenes' 12,000 fluid particles, so that scenes of up to
+  // 12,013 fluid particles keep one per 1.55 fluid spacings and finer ones
+  // keep the control set of 12,000.
+  p.control.auto_count = 3226;
   // Shapes do not climb off the floor or tip (docs/CONTROL_UNITS.md,
   // "Anchor": the standing anchor; docs/RESULTS.md, "Standing anchor").
   p.shape.anchor = 2;

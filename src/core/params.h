@@ -106,6 +106,13 @@ struct ControlParams {
   // 0 = one radius and cube clusters, as the paper (the default: measured,
   // docs/RESULTS.md, "Thin features").
   int adaptive = 0;
+  // Derived control count (docs/CONTROL_UNITS.md, "How many control
+  // particles"): > 0 caps the control particles a target without
+  // control_count or voxel_size gets at this many for the scene's whole fluid
+  // (a region its share by volume): the control spacing is at least
+  // cbrt(V / auto_count), V the scene's fluid volume, a length that does not
+  // change with the particle count; 0 = 1.55 fluid spacings at any count.
+  int auto_count = 0;
   // The constants eq. 4 and 6 are multiplied by (w_a, w_v, or their normalised
   // forms g attraction_g and sqrt(g / r) velocity_rate), and the scale mode
   // of ff_pull_scale (kernels/common/ff_control.h).

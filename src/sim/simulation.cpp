@@ -22,12 +22,21 @@ namespace {
 constexpr double kMinAutoControls = 64.0;
 
 // The voxel size of a target that asks for neither a size nor a count, for
-// `fluid_volume` of controlled fluid: 1.55 fluid spacings (a control particle
-// per 3.7 fluid particles); for a small region, finer, down to one fluid
-// spacing, so that it still gets min(fluid particles, kMinAutoControls)
-// control particles (docs/CONTROL_UNITS.md, "How many control particles").
-float defaultVoxelSize(const FluidParams& fp, double fluid_volume) {
-  const float voxel = 1.55f * fp.restSpacing();
+// `fluid_volume` of controlled fluid in a scene whose whole fluid has the rest
+// volume `scene_volume`: 1.55 fluid spacings (a control particle per 3.7 fluid
+// particles), but with `control.auto_count` never finer than the scene's
+// fluid cut into that many voxels, a length that does not change with the
+// particle count (at 2x the particles in the same volume the control set
+// stays as it was); for a small region, finer, down to one fluid spacing, so
+// that it still gets min(fluid particles, kMinAutoControls) control particles
+// (docs/CONTROL_UNITS.md, "How many control particles").
+float defaultVoxelSize(const Params& p, double scene_volume, double fluid_volume) {
+  const FluidParams& fp = p.fluid;
+  float voxel = 1.55f * fp.restSpacing();
+  if (p.control.auto_count > 0 && scene_volume > 0.0) {
+    const double coarse = std::cbrt(scene_volume / double(p.control.auto_count));
+    if (coarse > double(voxel)) voxel = float(coarse);
+  }
   const double v = double(voxel), fluid = fluid_volume / double(fp.restVolume());
   const double wanted = std::min(fluid, kMinAutoControls);
   if (!(fluid_volume > 0.0) || fluid_volume / (v * v * v) >= wanted) return voxel;
@@ -95,8 +104,8 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
           "the controlled fluid's flags do not match the fluid");
   if (has_target_) {
     target_spec_ = readTargetState(r);
-    target_ =
-        &cache_.get(target_spec_, target_volume_, defaultVoxelSize(scene_.params.fluid, target_volume_));
+    target_ = &cache_.get(target_spec_, target_volume_,
+                          defaultVoxelSize(scene_.params, sceneFluidVolume(), target_volume_));
     scene_.params = withControlRadius(scene_.params, target_->grid.voxel);
     backend_->setParams(scene_.params);
   }
@@ -115,6 +124,12 @@ void Simulation::saveState(StateWriter& w) const {
   w.vec(controlled_by_id_);
   if (has_target_) writeTargetState(w, target_spec_);
   backend_->saveState(w);
+}
+
+double Simulation::sceneFluidVolume() const {
+  double particles = 0.0;
+  for (const FluidBlockDesc& b : scene_.fluid) particles += double(b.dims[0]) * b.dims[1] * b.dims[2];
+  return particles * double(scene_.params.fluid.restVolume());
 }
 
 FluidState Simulation::makeFluid(const SceneDesc& scene) {
@@ -297,7 +312,7 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   range(pz, lo.z(), hi.z());
   const FluidParams& fp = scene_.params.fluid;
   const double volume = double(count) * fp.restVolume();
-  const float default_voxel = defaultVoxelSize(fp, volume);
+  const float default_voxel = defaultVoxelSize(scene_.params, sceneFluidVolume(), volume);
   checkControlCount(spec, count, volume, default_voxel);
   // The current shape stays in the cache (the backend still uses it) until
   // the new one is accepted.

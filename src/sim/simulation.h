@@ -84,6 +84,8 @@ class Simulation {
   // params with the control radius of control particles `voxel` apart
   // (ControlParams::radiusFor); params as they are for voxel 0 (no target).
   static Params withControlRadius(Params params, float voxel);
+  // The rest volume of all the scene's fluid (its particles times m / rho0).
+  double sceneFluidVolume() const;
   void applySchedule();
   template <class F>
   void timed(Phase p, F&& f);

@@ -54,7 +54,10 @@ float blendTime(const ControlSet& set, float falls, const float gravity[3]) {
 }
 
 void startBlend(ControlSet& set, float falls, const float gravity[3]) {
-  const float t = blendTime(set, falls, gravity);
+  startBlendOver(set, blendTime(set, falls, gravity));
+}
+
+void startBlendOver(ControlSet& set, float t) {
   set.bx0.clear(), set.by0.clear(), set.bz0.clear();
   Clusters& cl = set.clusters;
   cl.from_cx.clear(), cl.from_cy.clear(), cl.from_cz.clear();

@@ -82,6 +82,8 @@ Standing standingFor(const float gravity[3]);
 // d = 0: no blend (the arrays stay empty).
 float blendTime(const ControlSet& set, float falls, const float gravity[3]);
 void startBlend(ControlSet& set, float falls, const float gravity[3]);
+// The same blend over `t` seconds (t <= 0: none).
+void startBlendOver(ControlSet& set, float t);
 
 ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, const Vec3& hi,
                                  const ShapeMatchParams& sm, const Vec3& box_lo, const Vec3& box_hi,

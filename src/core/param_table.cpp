@@ -147,6 +147,10 @@ const std::vector<ParamInfo>& paramTable() {
        "> 0: the shape-matching step in units of sqrt(radius / g), set at every target; "
        "0: time_step in seconds",
        FF_FIELD(shape.time_step_fall)},
+      {"shape_matching", "blend_first", T::Real, 0.0, 100.0, false,
+       "rest-shape blend of a run's first target, from where placement puts it, over blend_first "
+       "sqrt(2 radius / g) (0 = off: the rest shape at once)",
+       FF_FIELD(shape.blend_first)},
   };
   return table;
 }

@@ -68,6 +68,10 @@ float ShapeMatchParams::timeStepFor(float radius, const float g[3]) const {
   return time_step_fall > 0.0f ? time_step_fall * std::sqrt(radius / gravityScale(g)) : time_step;
 }
 
+float ShapeMatchParams::firstBlendTime(float radius, const float g[3]) const {
+  return blend_first > 0.0f ? blend_first * std::sqrt(2.0f * radius / gravityScale(g)) : 0.0f;
+}
+
 double ShapeMatchParams::clustersPerParticle() const {
   const double per_axis =
       std::floor(2.0 * double(cluster_half_width) / double(std::max(1, cluster_stride))) + 1.0;

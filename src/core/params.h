@@ -149,7 +149,7 @@ struct ShapeMatchParams {
   // particles (the new shape spread over the fluid as it stands) into the new
   // target over `blend` times the time the fluid takes to fall the largest
   // distance a rest position moves, sqrt(2 d / g). 0 = off (the paper: the
-  // new rest shape at once). The first target of a run is never blended.
+  // new rest shape at once). A run's first target: `blend_first`.
   float blend = 0.0f;
   // The shape-matching step in units of sqrt(r / g), r the control radius
   // (docs/CONTROL_UNITS.md, "Shape-matching clock"): > 0 sets `time_step`
@@ -160,6 +160,17 @@ struct ShapeMatchParams {
   float time_step_fall = 0.0f;
   // The shape-matching step for control radius `radius` under gravity `g`.
   float timeStepFor(float radius, const float g[3]) const;
+  // The rest-shape blend of a run's first target (docs/CONTROL_UNITS.md,
+  // "Rest-shape blend"): its rest shape morphs from where placement puts the
+  // control particles (the target stretched over the picked fluid) into the
+  // target over `blend_first` times sqrt(2 r / g), r the control radius, so
+  // that the first forming does not ring the control set's slow deformation
+  // mode. A time of the scene's own clock, not of how far the particles move
+  // (`blend`): a tall shape squashed over its fluid would form late. 0 = off
+  // (the paper: the rest shape at once).
+  float blend_first = 0.0f;
+  // The first target's blend time (s) for control radius `radius` under gravity `g`.
+  float firstBlendTime(float radius, const float g[3]) const;
 
   // The most clusters one control particle belongs to: the lattice points
   // (multiples of the stride) within half_width voxels, per axis

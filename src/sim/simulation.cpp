@@ -325,9 +325,14 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
       placeControlParticles(shape, lo, hi, params.shape, scene_.container.min, scene_.container.max,
                             adaptiveControl(params.control, shape.grid.voxel, fp.restSpacing()),
                             target_ ? standingFor(fp.gravity) : Standing());
-  // A change: the rest shape morphs from where the particles start into the
-  // new target (the first target has no shape to morph from).
-  if (target_) startBlend(placed, params.shape.blend, fp.gravity);
+  // The rest shape morphs from where the particles start into the new
+  // target: at a change over `blend` fall times of the distance it moves, at
+  // the first target (stretched over the picked fluid) over `blend_first`
+  // fall times of the control radius.
+  if (target_)
+    startBlend(placed, params.shape.blend, fp.gravity);
+  else
+    startBlendOver(placed, params.shape.firstBlendTime(params.control.radius, fp.gravity));
   if (params.control.radius != scene_.params.control.radius) {
     scene_.params = params;
     backend_->setParams(scene_.params);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "control/control_args.h"
 #include "control/shape_match_args.h"
@@ -85,6 +86,68 @@ FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const floa
   auto total = [](f8 v) { return ff_lane_sum8(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]); };
   return {total(sum), total(ux), total(uy), total(uz)};
 }
+
+#if FF_SIMD_AVX2
+// The same sums for two control particles a and b of the same radius at
+// once, in the 16 lanes of AVX-512 vectors: a in lanes 0-7, b in lanes 8-15,
+// each fluid block of 8 loaded into both halves. The blocks are those of the
+// grid ranges within reach of either (rows of their bounding box): each half
+// adds every fluid particle within its reach in ascending sorted order, in its
+// lane k mod 8, and the others add exactly 0, so each half's sums are
+// scaleSums' bit for bit. Worth it where a and b are close (neighbours in the
+// set): one walk over nearly the same blocks serves both.
+typedef float f16 __attribute__((vector_size(64)));
+typedef int i16 __attribute__((vector_size(64)));
+[[gnu::target("avx512f")]] void scaleSumsPair(const UniformGrid& grid, size_t n, const float* x,
+                                              const float* y, const float* z, const float* vx,
+                                              const float* vy, const float* vz, const float pa[3],
+                                              const float pb[3], float r, float coef, ScaleSums out[2]) {
+  std::vector<uint32_t>& spans = threadSpans();
+  const float lo[3] = {std::min(pa[0], pb[0]), std::min(pa[1], pb[1]), std::min(pa[2], pb[2])};
+  const float hi[3] = {std::max(pa[0], pb[0]), std::max(pa[1], pb[1]), std::max(pa[2], pb[2])};
+  grid.rangesNear(lo, hi, r, spans);
+  const float r2 = r * r;
+  auto both = [](f8 v) {
+    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+  };
+  auto halves = [](float a, float b) { return f16{a, a, a, a, a, a, a, a, b, b, b, b, b, b, b, b}; };
+  const f16 px = halves(pa[0], pb[0]), py = halves(pa[1], pb[1]), pz = halves(pa[2], pb[2]);
+  const i16 iota = {0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7};
+  const f16 zero = {};
+  f16 sum = zero, ux = zero, uy = zero, uz = zero;
+  for (size_t s = 0; s < spans.size(); s += 2) {
+    const uint32_t b = spans[s], e = spans[s + 1];
+    for (uint32_t k = b & ~7u; k < e; k += 8) {
+      const int m = int(std::min<size_t>(8, n - k));
+      const f16 fx = both(simd::loadN(x + k, m, kFar)), fy = both(simd::loadN(y + k, m, kFar)),
+                fz = both(simd::loadN(z + k, m, kFar));
+      const f16 dx = px - fx, dy = py - fy, dz = pz - fz;
+      const i16 kk = iota + int(k);
+      const i16 in = (kk >= int(b)) & (kk < int(e));
+      const f16 w0 = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
+      i16 bits;
+      std::memcpy(&bits, &w0, sizeof bits);
+      bits &= in;
+      f16 w;
+      std::memcpy(&w, &bits, sizeof w);
+      sum += w;
+      ux += w * both(simd::loadN(vx + k, m, 0.0f)), uy += w * both(simd::loadN(vy + k, m, 0.0f));
+      uz += w * both(simd::loadN(vz + k, m, 0.0f));
+    }
+  }
+  for (int h = 0; h < 2; ++h) {
+    auto total = [h](f16 v) {
+      const int o = 8 * h;
+      return ff_lane_sum8(v[o], v[o + 1], v[o + 2], v[o + 3], v[o + 4], v[o + 5], v[o + 6], v[o + 7]);
+    };
+    out[h] = {total(sum), total(ux), total(uy), total(uz)};
+  }
+}
+bool hasAvx512() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
+}
+#endif
 
 // Control force sums of the fluid particles b .. e-1 (sorted positions, at
 // most 8, one row of the fluid grid) as lanes, the control particles in the
@@ -175,17 +238,50 @@ bool Controller::computeScale(const FluidView& f) {
   const long n = long(set_.size());
   if (n == 0) return true;
   const SortedFluid sf = sorted(f);
+  // Neighbours in the set (a pair) share one walk where they have the same
+  // radius and lie within half of it of each other (scaleSumsPair).
+#if FF_SIMD_AVX2
+  const bool pairs = hasAvx512();
+#else
+  const bool pairs = false;
+#endif
+  const long npairs = (n + 1) / 2;
   int bad = 0;
-#pragma omp parallel for schedule(dynamic, 32) reduction(| : bad)
-  for (long i = 0; i < n; ++i) {
-    const float r = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i)]), coef = ff_poly6_coef(r);
-    const float p[3] = {set_.x[i], set_.y[i], set_.z[i]};
-    const ScaleSums t = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, coef);
-    ff_float3 u;
-    const float s = ff_control_scale_of(t.w, FF_F3(t.ux, t.uy, t.uz), f.volume, &u);
-    fields_.s[i] = s;
-    fields_.ux[i] = u.x, fields_.uy[i] = u.y, fields_.uz[i] = u.z;
-    bad |= std::isfinite(s) && std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? 0 : 1;
+#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
+  for (long q = 0; q < npairs; ++q) {
+    const long i0 = 2 * q, i1 = std::min(n, i0 + 2);
+    ScaleSums t[2];
+    const float ra = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0)]), ca = ff_poly6_coef(ra);
+    const float pa[3] = {set_.x[i0], set_.y[i0], set_.z[i0]};
+    bool done = false;
+#if FF_SIMD_AVX2
+    if (pairs && i1 == i0 + 2) {
+      const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0 + 1)]);
+      const float pb[3] = {set_.x[i0 + 1], set_.y[i0 + 1], set_.z[i0 + 1]};
+      const float near = 0.5f * ra;
+      if (rb == ra && std::fabs(pa[0] - pb[0]) <= near && std::fabs(pa[1] - pb[1]) <= near &&
+          std::fabs(pa[2] - pb[2]) <= near) {
+        scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, pb, ra, ca, t);
+        done = true;
+      }
+    }
+#endif
+    if (!done) {
+      t[0] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, ra, ca);
+      if (i1 == i0 + 2) {
+        const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0 + 1)]);
+        const float pb[3] = {set_.x[i0 + 1], set_.y[i0 + 1], set_.z[i0 + 1]};
+        t[1] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pb, rb, ff_poly6_coef(rb));
+      }
+    }
+    for (long i = i0; i < i1; ++i) {
+      const ScaleSums& ti = t[i - i0];
+      ff_float3 u;
+      const float s = ff_control_scale_of(ti.w, FF_F3(ti.ux, ti.uy, ti.uz), f.volume, &u);
+      fields_.s[i] = s;
+      fields_.ux[i] = u.x, fields_.uy[i] = u.y, fields_.uz[i] = u.z;
+      bad |= std::isfinite(s) && std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? 0 : 1;
+    }
   }
   return !bad;
 }

@@ -200,7 +200,9 @@ TEST(BenchCli, Table1RunsTheFourScenesAtThePapersControlCounts) {
 // --stability: the unscaled run and one per parameter and factor, each
 // parameter scaled from the preset's value (the paper's w_a = 0.00008,
 // alpha = 0.3) and kept in its range (alpha x4 = 1.2 is clipped to 1); an
-// on/off parameter (adaptive, 0 in the paper preset) runs once, switched on.
+// on/off parameter (adaptive, 0 in the paper preset) runs once, switched on;
+// a mode parameter (anchor, 0 in the paper preset, of 0, 1, 2) once in each
+// other mode.
 TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
   const fftest::TempDir d("bench_stability");
   const fs::path scene = d / "s.json";
@@ -208,8 +210,12 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
                                                  "\"preset\": \"paper\", \"target\": \"sphere\"");
   auto r = runFlowform("bench --stability --backend cpu --threads 2 --stability-scene '" + scene.string() +
                        "' --stability-seconds 0.02 --stability-factors 0.5,4 "
-                       "--stability-params control.attraction,shape_matching.stiffness,control.adaptive");
+                       "--stability-params control.attraction,shape_matching.stiffness,control.adaptive,"
+                       "shape_matching.anchor");
   ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("| shape_matching.anchor | switched | 1 | stable |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| shape_matching.anchor | switched | 2 | stable |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("| shape_matching.anchor | switched | 0 |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| control.adaptive | switched | 1 | stable |"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("| control.adaptive | 0.5 |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| (none) | 1 | - | stable |"), std::string::npos) << r.out;

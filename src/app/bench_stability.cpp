@@ -20,10 +20,16 @@ std::string shortName(const ParamInfo& p) {
   return std::string(p.group) + "." + p.key;
 }
 
-// An on/off parameter (normalise, adaptive): scaling 0 or 1 by a factor says
-// nothing, so the sweep runs it once, switched the other way.
+// A mode parameter (on/off: normalise, adaptive; or one of a few modes:
+// shape_matching.anchor 0, 1, 2): scaling a mode by a factor says nothing,
+// so the sweep runs it once in each other mode.
 bool isSwitch(const ParamInfo& p) {
-  return p.type == ParamInfo::Type::Integer && p.min == 0.0 && p.max == 1.0;
+  return p.type == ParamInfo::Type::Integer && p.min == 0.0 && p.max >= 1.0 && p.max <= 2.0;
+}
+
+double getValue(const ParamInfo& p, const Params& params) {
+  void* f = p.field(const_cast<Params&>(params));  // the table's accessors only read here
+  return p.type == ParamInfo::Type::Integer ? double(*static_cast<int*>(f)) : double(*static_cast<float*>(f));
 }
 
 // The parameters the sweep scales: the numbers of the control and
@@ -31,8 +37,8 @@ bool isSwitch(const ParamInfo& p) {
 // units, a choice of units; with normalise on, attraction_g and velocity_rate
 // instead of attraction and velocity; with radius_spacings on, it instead of
 // the radius it sets; with time_step_fall on, it instead of the time_step it
-// sets), and the switches (normalise, adaptive), each run once
-// switched.
+// sets), and the modes (normalise, adaptive, anchor), each run once in each
+// other mode; not a number that is 0 (off), which no factor changes.
 std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names, const Params& params) {
   std::vector<const ParamInfo*> out;
   const bool normalised = params.control.normalise != 0;
@@ -45,7 +51,10 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
                           (!normalised && (k == "attraction_g" || k == "velocity_rate")) ||
                           (g == "control" && k == (in_spacings ? "radius" : "radius_spacings")) ||
                           (g == "shape_matching" && k == (in_fall_times ? "time_step" : "time_step_fall"));
-    if (names.empty() && number && !inactive && (g == "control" || g == "shape_matching")) out.push_back(&p);
+    // A number at 0 (off, e.g. the paper preset's blend and auto_count) stays 0 at every factor.
+    const bool zero = number && !isSwitch(p) && getValue(p, params) == 0.0;
+    if (names.empty() && number && !inactive && !zero && (g == "control" || g == "shape_matching"))
+      out.push_back(&p);
   }
   for (const std::string& n : names) {
     const auto it = std::find_if(paramTable().begin(), paramTable().end(),
@@ -58,11 +67,6 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
     out.push_back(&*it);
   }
   return out;
-}
-
-double getValue(const ParamInfo& p, Params& params) {
-  void* f = p.field(params);
-  return p.type == ParamInfo::Type::Integer ? double(*static_cast<int*>(f)) : double(*static_cast<float*>(f));
 }
 
 // Sets p to base * factor, kept in its range (integers rounded); returns the value set.
@@ -146,13 +150,18 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   report(base);
   runs.push_back(base);
   for (const ParamInfo* p : params) {
-    const std::vector<double> factors = isSwitch(*p) ? std::vector<double>{0.0} : o.factors;
+    const double v0 = getValue(*p, scene.params);
+    std::vector<double> factors = o.factors;  // for a mode: the other modes
+    if (isSwitch(*p)) {
+      factors.clear();
+      for (int m = 0; m <= int(p->max); ++m)
+        if (double(m) != v0) factors.push_back(double(m));
+    }
     for (double f : factors) {
       SceneDesc s = scene;
-      const double v0 = getValue(*p, s.params);
       bool clipped = false;
-      const double v = isSwitch(*p) ? setScaled(*p, s.params, 1.0 - v0, 1.0, clipped)
-                                    : setScaled(*p, s.params, v0, f, clipped);
+      const double v =
+          isSwitch(*p) ? setScaled(*p, s.params, f, 1.0, clipped) : setScaled(*p, s.params, v0, f, clipped);
       StabilityRun r;
       try {
         validateParams(s.params, "bench --stability");

@@ -412,7 +412,7 @@ TEST(Dfsph, HydrostaticColumnHoldsItsRestHeightAndPressure) {
 // no particle lost and the column at rest.
 TEST(Dfsph, RestingColumnHoldsItsDensityWithFourMillisecondSubstepsAllowed) {
   ff::Params p = ff::presetParams("water");
-  p.fluid.max_substep = 0.004f;
+  p.fluid.max_substep = 0.004f, p.fluid.max_substep_fall = 0.0f;
   ASSERT_FLOAT_EQ(p.fluid.time_step, 0.004f);
   Column col(p);
   ff::Simulation& sim = col.sim;
@@ -458,7 +458,7 @@ TEST(Dfsph, SmallDamBreakWithFourMillisecondSubstepsConverges) {
     "name": "dam-4ms", "preset": "water",
     "container": {"min": [0, 0, 0], "max": [0.25, 0.15, 0.06]},
     "fluid": [{"origin": [0, 0, 0], "dims": [10, 16, 8]}],
-    "params": {"fluid": {"max_substep": 0.004}}
+    "params": {"fluid": {"max_substep": 0.004, "max_substep_fall": 0}}
   })";
   auto backend = std::make_unique<ff::CpuBackend>(2);
   ff::CpuBackend* cpu = backend.get();
@@ -478,3 +478,47 @@ TEST(Dfsph, SmallDamBreakWithFourMillisecondSubstepsConverges) {
 }
 
 }  // namespace
+
+// fluid.max_substep_fall: the substep cap F sqrt(h / |g|), a multiple of
+// the fall time of the smoothing radius, against that closed form written
+// out here. A scene c times as large (h c times) falls on a clock sqrt(c)
+// times slower, and its cap is sqrt(c) times as long: the same on its own
+// clock (a cap in seconds, max_substep alone, is the same at every scale).
+// max_substep stays an upper bound, and 0 turns the fall-time cap off.
+TEST(Dfsph, FallTimeSubstepCapScalesWithTheScenesClock) {
+  ff::FluidParams f = ff::presetParams("water").fluid;
+  f.max_substep = 1.0f;
+  f.max_substep_fall = 0.05f;
+  const double h = f.smoothing_radius, g = 9.81;
+  f.gravity[0] = 0.0f, f.gravity[1] = -9.81f, f.gravity[2] = 0.0f;
+  const double one = f.substepCap();
+  EXPECT_NEAR(one, 0.05 * std::sqrt(h / g), 1e-6 * one);
+  for (const double c : {0.5, 2.0, 4.0}) {
+    ff::FluidParams s = f;
+    s.smoothing_radius = float(h * c);
+    EXPECT_NEAR(s.substepCap() / one, std::sqrt(c), 1e-5) << "scale " << c;
+  }
+  // Twice the gravity: a clock sqrt(2) times faster, and the cap with it.
+  ff::FluidParams heavy = f;
+  heavy.gravity[1] = -2.0f * 9.81f;
+  EXPECT_NEAR(heavy.substepCap() / one, 1.0 / std::sqrt(2.0), 1e-5);
+  // The substep count at rest (no pressure, no speed): ceil(time_step / cap),
+  // 3 for a step of 2.5 caps, and 2 at 4 times the size (a cap twice as long).
+  f.time_step = float(2.5 * one);
+  EXPECT_EQ(f.substepsFor(0.0, 0.0), 3);
+  ff::FluidParams large = f;
+  large.smoothing_radius = float(4.0 * h);
+  EXPECT_EQ(large.substepsFor(0.0, 0.0), 2);
+  // max_substep bounds it; 0 = max_substep (s) alone, whatever the size.
+  ff::FluidParams bounded = f;
+  bounded.max_substep = float(0.6 * one);
+  EXPECT_FLOAT_EQ(float(bounded.substepCap()), bounded.max_substep);
+  EXPECT_EQ(bounded.substepsFor(0.0, 0.0), 5);
+  ff::FluidParams off = large;
+  off.max_substep_fall = 0.0f;
+  off.max_substep = float(one);
+  EXPECT_FLOAT_EQ(float(off.substepCap()), off.max_substep);
+  EXPECT_EQ(off.substepsFor(0.0, 0.0), 3);
+  // The paper preset keeps its cap in seconds.
+  EXPECT_EQ(ff::presetParams("paper").fluid.max_substep_fall, 0.0f);
+}

@@ -79,6 +79,10 @@ const std::vector<ParamInfo>& paramTable() {
       {"fluid", "pressure_cfl", T::Real, 0.0, 1.0, true,
        "dfsph: CFL number on sqrt(p_max / rho0), the speed of the pressure force's own stiffness",
        FF_FIELD(fluid.pressure_cfl)},
+      {"fluid", "max_substep_fall", T::Real, 0.0, 100.0, false,
+       "> 0: the longest substep is also this many fall times sqrt(h / |g|) of the smoothing radius; "
+       "0: max_substep (s) alone",
+       FF_FIELD(fluid.max_substep_fall)},
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
        FF_FIELD(control.radius)},

@@ -12,15 +12,31 @@
 
 namespace ff {
 
+namespace {
+float gravityScale(const float g[3]) {
+  const float m = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  return m > 0.0f ? m : 9.81f;
+}
+}  // namespace
+
 float FluidParams::restSpacing() const {
   return std::cbrt(particle_mass / rest_density);
+}
+
+double FluidParams::substepCap() const {
+  // max_substep_fall: a multiple of the fall time sqrt(h / g) of the smoothing
+  // radius, so that a scene c times as large gets a cap sqrt(c) times as
+  // long, the same on its own clock; max_substep (s) stays an upper bound.
+  const double cap = double(max_substep);
+  if (max_substep_fall <= 0.0f) return cap;
+  return std::min(cap,
+                  double(max_substep_fall) * std::sqrt(double(smoothing_radius) / gravityScale(gravity)));
 }
 
 int FluidParams::substepsFor(double max_pressure, double max_speed) const {
   // WCSPH: the sound speed of p = k (rho - rho0), sqrt(k), adds to the speed.
   const double c = solver == PressureSolverKind::Wcsph ? std::sqrt(std::max(0.0, double(gas_constant))) : 0.0;
-  double dt_cfl =
-      std::min(double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12), double(max_substep));
+  double dt_cfl = std::min(double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12), substepCap());
   // DFSPH: its pressure force, V sum_j g (p_i + p_j) / rho0 r_ij, pushes a
   // particle down the gradient of its neighbours' kernel sum with a stiffness
   // proportional to p itself. No solve constrains that motion (the density
@@ -35,13 +51,6 @@ int FluidParams::substepsFor(double max_pressure, double max_speed) const {
   const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
   return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
 }
-
-namespace {
-float gravityScale(const float g[3]) {
-  const float m = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  return m > 0.0f ? m : 9.81f;
-}
-}  // namespace
 
 float ControlParams::recaptureSpeed(const float g[3]) const {
   return recapture * std::sqrt(gravityScale(g) * radius);
@@ -107,9 +116,13 @@ Params waterParams() {
   f.particle_mass = f.rest_density * volume;
   f.smoothing_radius = 2.0f * std::cbrt(volume);
   f.solver = PressureSolverKind::Dfsph;
-  f.cfl = 0.2f;            // two fifths of a spacing per substep at the largest speed (docs/PRESETS.md)
-  f.max_substep = 0.002f;  // docs/PRESETS.md: single 4 ms substeps make a resting column blow up
-  f.viscosity = 0.1f;      // docs/PRESETS.md: damps the settling of the cubic lattice
+  f.cfl = 0.2f;  // two fifths of a spacing per substep at the largest speed (docs/PRESETS.md)
+  // The longest substep is a sixteenth of the fall time sqrt(h / g) of the
+  // support, the same on every scene's own clock (docs/PRESETS.md,
+  // "Substep cap in fall times"): 2.2 ms at the paper's spacing, so 2
+  // substeps per 4 ms frame as the 2 ms cap before.
+  f.max_substep_fall = 0.0625f;
+  f.viscosity = 0.1f;  // docs/PRESETS.md: damps the settling of the cubic lattice
   // The pull that does not depend on the control particles' density
   // (docs/CONTROL_UNITS.md, "Normalised pull"); the paper preset keeps eq. 4
   // and 6 raw and the radius in metres.

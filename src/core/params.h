@@ -42,6 +42,10 @@ struct FluidParams {
   int max_substeps = 16;
   // The longest substep (s), whatever the CFL condition allows.
   float max_substep = 0.1f;
+  // > 0: the longest substep is also max_substep_fall times the fall time
+  // sqrt(h / |g|) of the smoothing radius h, which scales with the scene as
+  // its clock does (docs/PRESETS.md); 0 = max_substep (s) alone.
+  float max_substep_fall = 0.0f;
   // DFSPH: the substep also keeps dt <= pressure_cfl * h / sqrt(p_max / rho0),
   // p_max the last step's highest pressure: the pressure force's own
   // stiffness, which the solve leaves explicit (substepsFor, docs/PRESETS.md).
@@ -63,6 +67,9 @@ struct FluidParams {
   float restSpacing() const;  // cube root of the rest volume
   // Substeps the CFL condition asks for, given the highest pressure (Pa)
   // and speed of the last step.
+  // The longest substep (s): max_substep, or max_substep_fall's fall-time
+  // multiple where that is shorter.
+  double substepCap() const;
   int substepsFor(double max_pressure, double max_speed) const;
 };
 

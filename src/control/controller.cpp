@@ -143,10 +143,6 @@ typedef int i16 __attribute__((vector_size(64)));
     out[h] = {total(sum), total(ux), total(uy), total(uz)};
   }
 }
-bool hasAvx512() {
-  static const bool has = __builtin_cpu_supports("avx512f");
-  return has;
-}
 #endif
 
 // Control force sums of the fluid particles b .. e-1 (sorted positions, at
@@ -240,11 +236,7 @@ bool Controller::computeScale(const FluidView& f) {
   const SortedFluid sf = sorted(f);
   // Neighbours in the set (a pair) share one walk where they have the same
   // radius and lie within half of it of each other (scaleSumsPair).
-#if FF_SIMD_AVX2
-  const bool pairs = hasAvx512();
-#else
-  const bool pairs = false;
-#endif
+  [[maybe_unused]] const bool pairs = simd::hasAvx512();
   const long npairs = (n + 1) / 2;
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
@@ -253,26 +245,22 @@ bool Controller::computeScale(const FluidView& f) {
     ScaleSums t[2];
     const float ra = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0)]), ca = ff_poly6_coef(ra);
     const float pa[3] = {set_.x[i0], set_.y[i0], set_.z[i0]};
+    const long ib = std::min(i0 + 1, n - 1);  // b: the pair's second, if there is one
+    const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(ib)]);
+    const float pb[3] = {set_.x[ib], set_.y[ib], set_.z[ib]};
     bool done = false;
 #if FF_SIMD_AVX2
-    if (pairs && i1 == i0 + 2) {
-      const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0 + 1)]);
-      const float pb[3] = {set_.x[i0 + 1], set_.y[i0 + 1], set_.z[i0 + 1]};
-      const float near = 0.5f * ra;
-      if (rb == ra && std::fabs(pa[0] - pb[0]) <= near && std::fabs(pa[1] - pb[1]) <= near &&
-          std::fabs(pa[2] - pb[2]) <= near) {
-        scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, pb, ra, ca, t);
-        done = true;
-      }
+    const float near = 0.5f * ra;
+    if (pairs && i1 == i0 + 2 && rb == ra && std::fabs(pa[0] - pb[0]) <= near &&
+        std::fabs(pa[1] - pb[1]) <= near && std::fabs(pa[2] - pb[2]) <= near) {
+      scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, pb, ra, ca, t);
+      done = true;
     }
 #endif
     if (!done) {
       t[0] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, ra, ca);
-      if (i1 == i0 + 2) {
-        const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0 + 1)]);
-        const float pb[3] = {set_.x[i0 + 1], set_.y[i0 + 1], set_.z[i0 + 1]};
+      if (i1 == i0 + 2)
         t[1] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pb, rb, ff_poly6_coef(rb));
-      }
     }
     for (long i = i0; i < i1; ++i) {
       const ScaleSums& ti = t[i - i0];

@@ -111,9 +111,16 @@ inline bool hasAvx2() {
   static const bool has = __builtin_cpu_supports("avx2");
   return has;
 }
+inline bool hasAvx512() {
+  static const bool has = __builtin_cpu_supports("avx512f");
+  return has;
+}
 #define FF_TARGET_AVX2 __attribute__((target("avx2")))
 #else
 inline bool hasAvx2() {
+  return false;
+}
+inline bool hasAvx512() {
   return false;
 }
 #endif

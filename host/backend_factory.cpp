@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "cpu/backend_cpu.h"
+#include "parallel/simd8.h"
 #ifndef FF_NO_OPENCL
 #include "host/backend_opencl.h"
 #include "host/cl_context.h"
@@ -66,6 +67,7 @@ std::string kernelChoice() {
 
 std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note) {
   if (note) note->clear();
+  simd::isa();  // a bad $FLOWFORM_SIMD is refused here (the CPU's loops and metrics read it)
   if (kind != "auto" && kind != "cpu" && kind != "opencl")
     throw Error("--backend: unknown backend '" + kind + "' (known: auto, cpu, opencl)");
   if (device < -1) throw Error("--device: must be >= 0 (got " + std::to_string(device) + ")");

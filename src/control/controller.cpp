@@ -59,7 +59,8 @@ struct ScaleSums {
 // Control scale sums around the control particle at p: the fluid in the grid
 // ranges within reach, 8 consecutive sorted positions at a time, position k
 // in lane k mod 8 (kernels/control_scale.cl does the same with float8).
-FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const float* x, const float* y,
+template <class>
+FF_SIMD_BODY ScaleSums scaleSumsOf(const UniformGrid& grid, size_t n, const float* x, const float* y,
                                    const float* z, const float* vx, const float* vy, const float* vz,
                                    const float p[3], float r, float coef) {
   std::vector<uint32_t>& spans = threadSpans();
@@ -86,6 +87,7 @@ FF_SIMD_CLONES ScaleSums scaleSums(const UniformGrid& grid, size_t n, const floa
   auto total = [](f8 v) { return ff_lane_sum8(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]); };
   return {total(sum), total(ux), total(uy), total(uz)};
 }
+FF_SIMD_DISPATCH(scaleSums)
 
 #if FF_SIMD_AVX2
 // The same sums for two control particles a and b of the same radius at
@@ -160,7 +162,7 @@ struct ForceSumsArgs {
   float r;                                                         // the largest radius
 };
 template <class Lanes>
-[[gnu::always_inline]] inline void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
+FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
   const int n = int(e - b);
   const f8 xe = simd::loadN(A.x + b, n, kFar), ye = simd::loadN(A.y + b, n, kFar),
            ze = simd::loadN(A.z + b, n, kFar);
@@ -196,14 +198,7 @@ template <class Lanes>
   const f8 sums[7] = {fax, fay, faz, wsum, vsx, vsy, vsz};
   for (int k = 0; k < 7; ++k) simd::storeN(out + 8 * k, sums[k], n);
 }
-void forceSums(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
-  forceSumsOf<simd::PortableLanes>(A, b, e, out);
-}
-#if FF_SIMD_AVX2
-FF_TARGET_AVX2 void forceSumsAvx2(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
-  forceSumsOf<simd::Avx2Lanes>(A, b, e, out);
-}
-#endif
+FF_SIMD_DISPATCH(forceSums)
 
 }  // namespace
 
@@ -328,17 +323,12 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   const ForceSumsArgs fs{sf.x,          sf.y,       sf.z,        &cp_grid_,   sx_.data(),  sy_.data(),
                          sz_.data(),    ss_.data(), svx_.data(), svy_.data(), svz_.data(), sr2_.data(),
                          scoef_.data(), r};
-#if FF_SIMD_AVX2
-  auto* const sums_of = simd::hasAvx2() ? forceSumsAvx2 : forceSums;
-#else
-  auto* const sums_of = forceSums;
-#endif
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {
     const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
     float sums[56];
-    sums_of(fs, b, e, sums);
+    forceSums(fs, b, e, sums);
     for (uint32_t k = b; k < e; ++k) {
       const size_t l = k - b;
       const float wsum = sums[24 + l];

@@ -11,15 +11,17 @@
 #include "metrics/fluid_shares.h"
 #include "metrics/pose.h"
 #include "parallel/parallel_grain.h"
+#include "parallel/simd8.h"
 
 namespace ff {
 
 CpuBackend::CpuBackend(int threads) : threads_(threads), forces_(makeCpuForces()) {
   if (threads_ > 0) omp_set_num_threads(threads_);
+  simd::isa();  // a bad $FLOWFORM_SIMD is an error here, not in a parallel loop
 }
 
 std::string CpuBackend::device() const {
-  return "OpenMP, " + std::to_string(omp_get_max_threads()) + " threads";
+  return "OpenMP, " + std::to_string(omp_get_max_threads()) + " threads, " + simd::isaName(simd::isa());
 }
 
 void CpuBackend::init(const Params& params, const ContainerDesc& box, const FluidState& fluid) {

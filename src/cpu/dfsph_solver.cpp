@@ -36,7 +36,8 @@ struct Kernel {
 // First keeps in `cache` the candidates that a lane reaches (a cheap test on
 // r^2), then sums over those alone and stores their g: the candidates left
 // out add exactly 0 to every sum (NeighbourCache).
-FF_SIMD_CLONES void factorSums(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
+template <class>
+FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
                                float* out, NeighbourCache& cache) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
@@ -72,10 +73,12 @@ FF_SIMD_CLONES void factorSums(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   const f8 sums[6] = {w, ax, ay, az, ssq, cnt};
   for (int q = 0; q < 6; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
 }
+FF_SIMD_DISPATCH(factorSums)
 
 // rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1 (group gi), over
 // the cached candidates: the grid walk's terms in its order.
-FF_SIMD_CLONES void rateSums(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* ux,
+template <class>
+FF_SIMD_BODY void rateSumsOf(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* ux,
                              const float* uy, const float* uz, uint32_t b, uint32_t e, float* out) {
   const FluidState& s = f.s;
   const Group g = lanesOf(s, b, e);
@@ -95,10 +98,12 @@ FF_SIMD_CLONES void rateSums(const CpuFluid& f, const NeighbourCache& nc, size_t
   }
   simd::storeN(out, rs, g.n);
 }
+FF_SIMD_DISPATCH(rateSums)
 
 // ks = sum_j g (k_i + k_j) r_ij of the particles b .. e-1 (group gi; 3 x 8
 // lanes), over the cached candidates.
-FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* k,
+template <class>
+FF_SIMD_BODY void kappaSumsOf(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* k,
                               uint32_t b, uint32_t e, float* out) {
   const FluidState& s = f.s;
   const Group g = lanesOf(s, b, e);
@@ -120,6 +125,7 @@ FF_SIMD_CLONES void kappaSums(const CpuFluid& f, const NeighbourCache& nc, size_
   const f8 sums[3] = {kx, ky, kz};
   for (int q = 0; q < 3; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
 }
+FF_SIMD_DISPATCH(kappaSums)
 
 using Clock = std::chrono::steady_clock;
 

@@ -44,7 +44,8 @@ namespace {
 
 // Density sums of the particles b .. e-1: lane by lane, the neighbours in
 // ascending sorted order, as the OpenCL kernel (kernels/density.cl).
-FF_SIMD_CLONES void densitySums(const CpuFluid& f, uint32_t b, uint32_t e, float h, float coef, float* out) {
+template <class>
+FF_SIMD_BODY void densitySumsOf(const CpuFluid& f, uint32_t b, uint32_t e, float h, float coef, float* out) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
   Group g;
@@ -59,10 +60,12 @@ FF_SIMD_CLONES void densitySums(const CpuFluid& f, uint32_t b, uint32_t e, float
     }
   simd::storeN(out, sum, g.n);
 }
+FF_SIMD_DISPATCH(densitySums)
 
 // WCSPH pressure sums of the particles b .. e-1 (kernels/pressure_wcsph.cl),
 // 8 lanes each of x, y, z in out[0..23].
-FF_SIMD_CLONES void pressureSums(const CpuFluid& f, uint32_t b, uint32_t e, float h, float mass, float* out) {
+template <class>
+FF_SIMD_BODY void pressureSumsOf(const CpuFluid& f, uint32_t b, uint32_t e, float h, float mass, float* out) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
   Group g;
@@ -84,6 +87,7 @@ FF_SIMD_CLONES void pressureSums(const CpuFluid& f, uint32_t b, uint32_t e, floa
   const f8 sums[3] = {px, py, pz};
   for (int k = 0; k < 3; ++k) simd::storeN(out + 8 * k, sums[k], n);
 }
+FF_SIMD_DISPATCH(pressureSums)
 
 }  // namespace
 

@@ -21,7 +21,8 @@ constexpr float kFar = 1.0e18f;
 // of a walk over the 27 cells around its own centre (a particle out of reach
 // adds an exact 0). The sums only grow, so once every lane has reached the
 // threshold the rest of the walk could not change the answer and is skipped.
-FF_SIMD_CLONES int fluidLanes(const float* cx, const float* cy, const float* cz, int n,
+template <class>
+FF_SIMD_BODY int fluidLanesOf(const float* cx, const float* cy, const float* cz, int n,
                               const UniformGrid& grid, const float* x, const float* y, const float* z,
                               float mass, float h, float threshold, std::vector<uint32_t>& spans) {
   const f8 wx = simd::loadN(cx, n, kFar), wy = simd::loadN(cy, n, kFar), wz = simd::loadN(cz, n, kFar);
@@ -48,6 +49,7 @@ FF_SIMD_CLONES int fluidLanes(const float* cx, const float* cy, const float* cz,
   }
   return mask;
 }
+FF_SIMD_DISPATCH(fluidLanes)
 
 std::vector<uint32_t>& threadSpans() {
   static thread_local std::vector<uint32_t> spans;

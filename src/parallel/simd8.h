@@ -2,10 +2,17 @@
 // OpenMP backend's neighbour loops. They run eight query particles at once
 // against one neighbour at a time: each lane adds its own terms in the
 // neighbours' order, exactly as a scalar loop (and an OpenCL work-item) does,
-// so vectorising changes no result. Compiled for AVX2 where the CPU has it
-// (FF_SIMD_CLONES: function multi-versioning), else as pairs of SSE operations.
+// so vectorising changes no result. Run as AVX2 where the CPU has it (and
+// FLOWFORM_SIMD allows it: FF_SIMD_DISPATCH below), else as pairs of SSE
+// operations.
 #pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
 #include <cstring>
+#include <string>
+
+#include "core/error.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 namespace ff::simd {
@@ -79,24 +86,71 @@ inline bool finiteN(f8 v, int n) {
 
 }  // namespace ff::simd
 
-// Multi-versioning for the hot loops: an AVX2 clone picked at load time where
-// the CPU has it, and the portable default.
+// Instruction sets of the hot loops. Each is written once as an
+// always-inline template on its lane test (FF_SIMD_BODY) and instantiated in a
+// portable function and in one built for AVX2 (FF_SIMD_DISPATCH); a few have
+// an AVX-512 instance too. PortableLanes compiles anywhere; Avx2Lanes::any is
+// one vmovmskps (simd::any goes through four general-purpose registers) and
+// may only run inside AVX2 code. Every instance rounds the same operations in
+// the same order (no contraction: -ffp-contract=off) and tests the same bits,
+// so they give the same results bit for bit (tests/test_simd_paths.cpp).
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define FF_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #define FF_SIMD_AVX2 1
 #else
-#define FF_SIMD_CLONES
 #define FF_SIMD_AVX2 0
 #endif
 
-// Lane tests by instruction set, for a hot loop whose lane test is most of
-// its work: the loop is written once as an always-inline template on one of
-// these and instantiated in a plain function and in one built for AVX2
-// (target("avx2")), called where simd::hasAvx2(). PortableLanes compiles
-// anywhere; Avx2Lanes::any is one vmovmskps (simd::any goes through four
-// general-purpose registers) and may only run inside AVX2 code. Both test the
-// same bits, so the results are the same.
 namespace ff::simd {
+
+// The widest instance a loop may run: the CPU's, capped by $FLOWFORM_SIMD
+// (read once: `portable`, `avx2`, or `native`, the default: no cap) and by
+// capIsa(). The cap changes only the speed, never a result.
+enum class Isa { Portable = 0, Avx2 = 1, Avx512 = 2 };
+
+namespace detail {
+inline Isa cpuIsa() {
+#if FF_SIMD_AVX2
+  if (__builtin_cpu_supports("avx512f")) return Isa::Avx512;
+  if (__builtin_cpu_supports("avx2")) return Isa::Avx2;
+#endif
+  return Isa::Portable;
+}
+inline Isa environmentCap() {
+  const char* v = std::getenv("FLOWFORM_SIMD");
+  const std::string s = v ? v : "";
+  if (s.empty() || s == "native") return Isa::Avx512;
+  if (s == "avx2") return Isa::Avx2;
+  if (s == "portable") return Isa::Portable;
+  throw Error("FLOWFORM_SIMD: unknown instruction set '" + s + "' (known: native, avx2, portable)");
+}
+// The CPU's, capped by the environment; capIsa() lowers it further.
+inline std::atomic<int>& allowed() {
+  static std::atomic<int> a{std::min(int(cpuIsa()), int(environmentCap()))};
+  return a;
+}
+}  // namespace detail
+
+// Throws ff::Error on a bad $FLOWFORM_SIMD (the first call reads it).
+inline Isa isa() {
+  return Isa(detail::allowed().load(std::memory_order_relaxed));
+}
+// Caps isa() for the rest of the process (the tests run each instance so);
+// Isa::Avx512 restores the CPU's and the environment's cap. Not while a step runs.
+inline void capIsa(Isa cap) {
+  detail::allowed().store(std::min(int(detail::cpuIsa()), std::min(int(detail::environmentCap()), int(cap))),
+                          std::memory_order_relaxed);
+}
+// As FLOWFORM_SIMD names it ("avx512" for the widest).
+inline const char* isaName(Isa i) {
+  return i == Isa::Avx512 ? "avx512" : i == Isa::Avx2 ? "avx2" : "portable";
+}
+inline bool hasAvx2() {
+  return isa() >= Isa::Avx2;
+}
+inline bool hasAvx512() {
+  return isa() >= Isa::Avx512;
+}
+
 struct PortableLanes {
   static bool any(i8 m) { return simd::any(m); }
 };
@@ -107,21 +161,34 @@ struct Avx2Lanes {
   static inline bool any(i8 m) { return __builtin_ia32_movmskps256((f8)m) != 0; }
 };
 #pragma GCC pop_options
-inline bool hasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
-inline bool hasAvx512() {
-  static const bool has = __builtin_cpu_supports("avx512f");
-  return has;
-}
 #define FF_TARGET_AVX2 __attribute__((target("avx2")))
-#else
-inline bool hasAvx2() {
-  return false;
-}
-inline bool hasAvx512() {
-  return false;
-}
 #endif
 }  // namespace ff::simd
+
+// A hot loop's body: `template <class Lanes> FF_SIMD_BODY R nameOf(...)`.
+#define FF_SIMD_BODY [[gnu::always_inline]] inline
+// Defines name(...) for the body nameOf: its AVX2 instance where
+// simd::hasAvx2(), else its portable one. Not inlined, so that its loop's
+// other inlining stays as it was with GCC's target_clones before.
+#if FF_SIMD_AVX2
+#define FF_SIMD_DISPATCH(name)                                             \
+  template <class... A>                                                    \
+  auto name##Portable(A&&... a) {                                          \
+    return name##Of<::ff::simd::PortableLanes>(static_cast<A&&>(a)...);    \
+  }                                                                        \
+  template <class... A>                                                    \
+  FF_TARGET_AVX2 auto name##Avx2(A&&... a) {                               \
+    return name##Of<::ff::simd::Avx2Lanes>(static_cast<A&&>(a)...);        \
+  }                                                                        \
+  template <class... A>                                                    \
+  [[gnu::noinline]] auto name(A&&... a) {                                  \
+    return ::ff::simd::hasAvx2() ? name##Avx2(static_cast<A&&>(a)...)      \
+                                 : name##Portable(static_cast<A&&>(a)...); \
+  }
+#else
+#define FF_SIMD_DISPATCH(name)                                          \
+  template <class... A>                                                 \
+  inline auto name(A&&... a) {                                          \
+    return name##Of<::ff::simd::PortableLanes>(static_cast<A&&>(a)...); \
+  }
+#endif

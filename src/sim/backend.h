@@ -35,7 +35,7 @@ class Backend {
  public:
   virtual ~Backend() = default;
   virtual std::string name() const = 0;    // "cpu", "opencl"
-  virtual std::string device() const = 0;  // e.g. "OpenMP, 2 threads"
+  virtual std::string device() const = 0;  // e.g. "OpenMP, 2 threads, avx512"
 
   virtual void init(const Params& params, const ContainerDesc& box, const FluidState& fluid) = 0;
   virtual void setParams(const Params& params) = 0;

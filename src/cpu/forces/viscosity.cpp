@@ -20,7 +20,8 @@ using simd::f8;
 // order, as the OpenCL kernels. With `nc` (the density phase's lists, group
 // gi) it walks the candidates a lane reaches, in the same order (the others
 // add exactly 0), else the grid.
-FF_SIMD_CLONES void viscositySums(const CpuFluid& f, const NeighbourCache* nc, size_t gi, uint32_t b,
+template <class>
+FF_SIMD_BODY void viscositySumsOf(const CpuFluid& f, const NeighbourCache* nc, size_t gi, uint32_t b,
                                   uint32_t e, float h, float mass, float* out) {
   const FluidState& s = f.s;
   std::vector<uint32_t>& spans = threadSpans();
@@ -54,6 +55,7 @@ FF_SIMD_CLONES void viscositySums(const CpuFluid& f, const NeighbourCache* nc, s
   const f8 sums[3] = {fx, fy, fz};
   for (int k = 0; k < 3; ++k) simd::storeN(out + 8 * k, sums[k], n);
 }
+FF_SIMD_DISPATCH(viscositySums)
 
 class CpuViscosity : public CpuForce {
  public:

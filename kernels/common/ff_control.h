@@ -66,13 +66,33 @@ FF_FN float ff_lane_sum8(float a0, float a1, float a2, float a3, float a4, float
  * fluid inside the shape and up to one spacing outside it (the voxelisation's
  * own uncertainty), fading to none at the edge of its reach. */
 FF_FN float ff_control_held(float wsum, float v_c, float full_at) {
-  return FF_FMIN(1.0f, wsum * v_c / full_at);
+  /* full_at is 0 when the kernel does not reach one spacing out (a radius of
+   * at most one control spacing): then any fluid in reach is carried whole,
+   * the limit of the quotient as full_at -> 0+. */
+  return full_at > 0.0f ? FF_FMIN(1.0f, wsum * v_c / full_at) : (wsum > 0.0f ? 1.0f : 0.0f);
 }
 
 /* The coverage one control-particle spacing (cbrt(v_c)) outside a flat surface
- * of the shape, for control radius r with poly6 coefficient coef. */
+ * of the shape, for control radius r with poly6 coefficient coef: 0 (exactly)
+ * where the radius is at most one spacing. ff_poly6_wall_fraction takes it as
+ * the difference of two terms of size r^9 that cancel as the spacing nears r:
+ * in float its relative error is 1e-7 at r = 2 spacings, 2e-6 at 1.53, 4e-3
+ * at 1.1, and from 1.02 spacings down its result is rounding noise of either
+ * sign (+-1e-7; -5.5e-8 at the water bunny's 0.765 spacings, where the exact
+ * value is 0: ff_control_held, coverage / full_at, then carried minus ~1e7
+ * times the weight of covered fluid and the recapture pulled that hard;
+ * docs/CONTROL_UNITS.md, "Radius in control spacings"). Within a third of r
+ * of the kernel's edge (r <= 1.5 spacings) it is therefore taken from its
+ * expansion in t = (r - spacing) / r, (315 / 256) t^5 (16/5 - 16 t / 3 +
+ * 24 t^2 / 7 - t^3 + t^4 / 9), whose terms do not cancel there (relative
+ * error <= 2e-6 down to 1.01 spacings); at larger radii as before. */
 FF_FN float ff_control_full_coverage(float v_c, float r, float coef) {
-  return ff_poly6_wall_fraction(FF_CBRT(v_c), r, coef);
+  const float d = FF_CBRT(v_c);
+  if (d < r * (2.0f / 3.0f)) return ff_poly6_wall_fraction(d, r, coef);
+  const float t = FF_FMAX(0.0f, (r - d) / r), t2 = t * t;
+  const float poly =
+      ((16.0f / 5.0f) - (16.0f / 3.0f) * t) + ((24.0f / 7.0f) * t2 - t2 * t) + t2 * t2 * (1.0f / 9.0f);
+  return (315.0f / 256.0f) * (t2 * t2 * t) * poly;
 }
 
 /* Eq. 4, one control particle's term: w_a s_i (p_i - x_e)/|p_i - x_e| W, as

@@ -36,7 +36,7 @@ struct Kernel {
 // First keeps in `cache` the candidates that a lane reaches (a cheap test on
 // r^2), then sums over those alone and stores their g: the candidates left
 // out add exactly 0 to every sum (NeighbourCache).
-template <class>
+template <class Lanes>
 FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
                                float* out, NeighbourCache& cache) {
   const FluidState& s = f.s;
@@ -52,7 +52,7 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   for (size_t r = 0; r < spans.size(); r += 2)
     for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-      list.put(j, simd::any(dx * dx + dy * dy + dz * dz < reach2));
+      list.put(j, Lanes::any(dx * dx + dy * dy + dz * dz < reach2));
     }
   const f8 zero = simd::splat(0.0f);
   f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;

@@ -16,21 +16,21 @@
 #include "ff_sph.h"
 
 // Control particles (position, s, velocity) copied into their grid's order,
-// with their own radius (ff_control_radius of `radius` and the scale rs)
-// squared and its poly6 coefficient.
+// with their reach in eq. 4 and 6 squared and its poly6 coefficient: the
+// control radius for every one (adaptive control's own radii act in eq. 5
+// only, control_scale.cl; docs/CONTROL_UNITS.md, "Thin features").
 __kernel void control_gather(__global const uint* order, uint nc, __global const float* x,
                              __global const float* y, __global const float* z, __global const float* s,
                              __global const float* vx, __global const float* vy, __global const float* vz,
-                             __global const float* rs, float radius, __global float* sx, __global float* sy,
-                             __global float* sz, __global float* ss, __global float* svx, __global float* svy,
+                             float radius, __global float* sx, __global float* sy, __global float* sz,
+                             __global float* ss, __global float* svx, __global float* svy,
                              __global float* svz, __global float* sr2, __global float* scoef) {
   const uint k = get_global_id(0);
   if (k >= nc) return;
   const uint i = order[k];
   sx[k] = x[i], sy[k] = y[i], sz[k] = z[i], ss[k] = s[i];
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
-  const float r = ff_control_radius(radius, rs[i]);
-  sr2[k] = r * r, scoef[k] = ff_poly6_coef(r);
+  sr2[k] = radius * radius, scoef[k] = ff_poly6_coef(radius);
 }
 
 // The recapture's centre (out[0..2]), fade (out[3]), whether it aims at

@@ -78,8 +78,8 @@ void ClControl::apply(ClForceContext& c, float dt) {
   d.grids.build(d.control_r, d.cx.get(), d.cy.get(), d.cz.get(), nc, r / float(FF_CONTROL_GRID_DIVISIONS),
                 boxMin(c.box), boxMax(c.box));
   launch(q, gather_, nc, d.control_r.order.get(), cl_uint(nc), d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
-         d.cvx.get(), d.cvy.get(), d.cvz.get(), d.crs.get(), r, d.sx.get(), d.sy.get(), d.sz.get(),
-         d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(), d.scoef.get());
+         d.cvx.get(), d.cvy.get(), d.cvz.get(), r, d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(),
+         d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(), d.scoef.get());
   const float cp_volume = c.control.particle_volume;
   const float* g = c.params.fluid.gravity;
   const DeviceGrid& cg = d.control_r;

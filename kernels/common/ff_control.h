@@ -38,9 +38,11 @@ typedef struct {
 
 /* Adaptive control (docs/CONTROL_UNITS.md, "Thin features"): a control
  * particle's own radius, the control radius times its scale (at most 1: the
- * target's local thickness around it). Eq. 4-6 weigh each control particle
- * with the poly6 kernel of its own radius (r^2 and ff_poly6_coef of it, once
- * per control particle and step). */
+ * target's local thickness around it). Eq. 5's fluid sum around it runs
+ * within its own radius, with the poly6 kernel of it, so that a filled thin
+ * part reads filled; eq. 4 and 6 (and the carried gravity and the recapture,
+ * which read their sums) weigh every control particle within the control
+ * radius, so that no fluid falls out of reach where the radii are small. */
 FF_FN float ff_control_radius(float radius, float scale) {
   return radius * scale;
 }

@@ -286,8 +286,10 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
     const uint32_t i = order[k];
     sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i], ss_[k] = fields_.s[i];
     svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
-    const float ri = ff_control_radius(r, set_.radius_scale[i]);
-    sr2_[k] = ri * ri, scoef_[k] = ff_poly6_coef(ri);
+    // Every control particle reaches the control radius in eq. 4 and 6 (and
+    // so in the carried gravity and the recapture, which read their sums):
+    // adaptive control's own radii act in eq. 5 only (computeScale).
+    sr2_[k] = r * r, scoef_[k] = ff_poly6_coef(r);
   }
   const float cp_volume = set_.particle_volume;
   // Recapture: the centre of the unfilled control particles and its fade.

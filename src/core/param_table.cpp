@@ -110,8 +110,8 @@ const std::vector<ParamInfo>& paramTable() {
        "0: as the paper writes them (attraction, velocity, units)",
        FF_FIELD(control.normalise)},
       {"control", "adaptive", T::Integer, 0, 1, false,
-       "1: each control particle's radius follows the target's local thickness and clusters follow limbs "
-       "(thin features); 0: one radius, cube clusters (the paper)",
+       "1: each control particle's radius in eq. 5 follows the target's local thickness and clusters follow "
+       "limbs (thin features); 0: one radius, cube clusters (the paper)",
        FF_FIELD(control.adaptive)},
       {"control", "attraction_g", T::Real, 0.0, 1e3, false,
        "normalised attraction (normalise = 1): its most, in units of gravity",

@@ -81,8 +81,8 @@ FF_FN float ff_control_held(float wsum, float v_c, float full_at) {
  * in float its relative error is 1e-7 at r = 2 spacings, 2e-6 at 1.53, 4e-3
  * at 1.1, and from 1.02 spacings down its result is rounding noise of either
  * sign (+-1e-7; -5.5e-8 at the water bunny's 0.765 spacings, where the exact
- * value is 0: ff_control_held, coverage / full_at, then carried minus ~1e7
- * times the weight of covered fluid and the recapture pulled that hard;
+ * value is 0: ff_control_held, coverage / full_at, then was down to -9.4e7
+ * for the fluid in reach, whose accelerations reached 1.3e9 m/s^2;
  * docs/CONTROL_UNITS.md, "Radius in control spacings"). Within a third of r
  * of the kernel's edge (r <= 1.5 spacings) it is therefore taken from its
  * expansion in t = (r - spacing) / r, (315 / 256) t^5 (16/5 - 16 t / 3 +

@@ -9,11 +9,15 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include "app/bench_runner.h"
+#include "app/bench_stability.h"
 #include "cli_run.h"
+#include "core/param_table.h"
+#include "core/params.h"
 #include "test_scenes.h"
 
 namespace {
@@ -229,6 +233,56 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
                          "' --stability-params control.units");
   EXPECT_EQ(bad.code, 1) << bad.out;
   EXPECT_NE(bad.out.find("--stability-params: 'control.units'"), std::string::npos) << bad.out;
+}
+
+// The modes of the param table (ParamInfo::mode) are the parameters the
+// stability sweep switches instead of scaling. The test's own reading of
+// each integer parameter's doc (scenes/README.md): three pick a mode, the
+// rest count something (iterations, substeps, control particles, voxels),
+// and every integer of the table is one or the other. The default sweep on
+// both presets switches exactly the flagged set, each through all its other
+// values; a count, named explicitly, is scaled by the factors.
+TEST(BenchStability, ModesAreTheTablesFlaggedParametersAndNoCountIsSwitched) {
+  const std::set<std::string> modes = {"control.normalise", "control.adaptive", "shape_matching.anchor"};
+  const std::set<std::string> counts = {"fluid.max_iterations",
+                                        "fluid.max_substeps",
+                                        "control.auto_count",
+                                        "shape_matching.cluster_stride",
+                                        "shape_matching.cluster_half_width",
+                                        "shape_matching.rotation_iterations"};
+  std::set<std::string> flagged;
+  for (const ff::ParamInfo& p : ff::paramTable()) {
+    const std::string name = std::string(p.group) + "." + p.key;
+    if (p.mode) flagged.insert(name);
+    if (p.type == ff::ParamInfo::Type::Integer)
+      EXPECT_TRUE(modes.count(name) + counts.count(name) == 1) << name << ": a mode or a count?";
+    else
+      EXPECT_FALSE(p.mode) << name << ": only an integer picks a mode";
+  }
+  EXPECT_EQ(flagged, modes);
+  ff::app::StabilityOptions o;
+  o.factors = {0.5, 4.0};
+  for (const char* preset : {"paper", "water"}) {
+    SCOPED_TRACE(preset);
+    const ff::Params params = ff::presetParams(preset);
+    std::set<std::string> switched;
+    for (const ff::app::StabilityPlan& q : ff::app::stabilityPlan(params, o)) {
+      const std::string name = std::string(q.param->group) + "." + q.param->key;
+      if (!q.mode) {
+        EXPECT_EQ(q.factors, o.factors) << name;
+        continue;
+      }
+      switched.insert(name);
+      EXPECT_EQ(q.factors.size(), size_t(q.param->max - q.param->min)) << name << ": every other mode";
+    }
+    EXPECT_EQ(switched, modes);
+    ff::app::StabilityOptions named = o;
+    named.params.assign(counts.begin(), counts.end());
+    for (const ff::app::StabilityPlan& q : ff::app::stabilityPlan(params, named)) {
+      EXPECT_FALSE(q.mode) << q.param->key;
+      EXPECT_EQ(q.factors, o.factors) << q.param->key;
+    }
+  }
 }
 
 // The rows of a `bench --dambreak` table by solver, each as its cells.

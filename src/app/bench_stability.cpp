@@ -20,13 +20,6 @@ std::string shortName(const ParamInfo& p) {
   return std::string(p.group) + "." + p.key;
 }
 
-// A mode parameter (on/off: normalise, adaptive; or one of a few modes:
-// shape_matching.anchor 0, 1, 2): scaling a mode by a factor says nothing,
-// so the sweep runs it once in each other mode.
-bool isSwitch(const ParamInfo& p) {
-  return p.type == ParamInfo::Type::Integer && p.min == 0.0 && p.max >= 1.0 && p.max <= 2.0;
-}
-
 double getValue(const ParamInfo& p, const Params& params) {
   void* f = p.field(const_cast<Params&>(params));  // the table's accessors only read here
   return p.type == ParamInfo::Type::Integer ? double(*static_cast<int*>(f)) : double(*static_cast<float*>(f));
@@ -52,7 +45,7 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
                           (g == "control" && k == (in_spacings ? "radius" : "radius_spacings")) ||
                           (g == "shape_matching" && k == (in_fall_times ? "time_step" : "time_step_fall"));
     // A number at 0 (off, e.g. the paper preset's blend and auto_count) stays 0 at every factor.
-    const bool zero = number && !isSwitch(p) && getValue(p, params) == 0.0;
+    const bool zero = number && !p.mode && getValue(p, params) == 0.0;
     if (names.empty() && number && !inactive && !zero && (g == "control" || g == "shape_matching"))
       out.push_back(&p);
   }
@@ -121,6 +114,21 @@ StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double second
 
 }  // namespace
 
+std::vector<StabilityPlan> stabilityPlan(const Params& params, const StabilityOptions& o) {
+  std::vector<StabilityPlan> plan;
+  for (const ParamInfo* p : sweptParams(o.params, params)) {
+    StabilityPlan q{p, p->mode, o.factors};
+    if (q.mode) {
+      q.factors.clear();
+      const double v0 = getValue(*p, params);
+      for (int m = int(p->min); m <= int(p->max); ++m)
+        if (double(m) != v0) q.factors.push_back(double(m));
+    }
+    plan.push_back(q);
+  }
+  return plan;
+}
+
 double explosionSpeed(const SceneDesc& scene) {
   const Vec3 ext = scene.container.max - scene.container.min;
   const float* g = scene.params.fluid.gravity;
@@ -136,7 +144,7 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   for (double f : o.factors)
     if (!(f > 0.0) || !std::isfinite(f))
       throw Error("--stability-factors: each factor must be a positive number");
-  const std::vector<const ParamInfo*> params = sweptParams(o.params, scene.params);
+  const std::vector<StabilityPlan> plan = stabilityPlan(scene.params, o);
   const double vx = explosionSpeed(scene);
   std::vector<StabilityRun> runs;
   auto report = [&](const StabilityRun& r) {
@@ -149,19 +157,14 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   base.param = "(none)";
   report(base);
   runs.push_back(base);
-  for (const ParamInfo* p : params) {
+  for (const StabilityPlan& q : plan) {
+    const ParamInfo* p = q.param;
     const double v0 = getValue(*p, scene.params);
-    std::vector<double> factors = o.factors;  // for a mode: the other modes
-    if (isSwitch(*p)) {
-      factors.clear();
-      for (int m = 0; m <= int(p->max); ++m)
-        if (double(m) != v0) factors.push_back(double(m));
-    }
-    for (double f : factors) {
+    for (double f : q.factors) {
       SceneDesc s = scene;
       bool clipped = false;
       const double v =
-          isSwitch(*p) ? setScaled(*p, s.params, f, 1.0, clipped) : setScaled(*p, s.params, v0, f, clipped);
+          q.mode ? setScaled(*p, s.params, f, 1.0, clipped) : setScaled(*p, s.params, v0, f, clipped);
       StabilityRun r;
       try {
         validateParams(s.params, "bench --stability");
@@ -169,7 +172,7 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
       } catch (const Error& e) {  // a combination validateParams refuses (e.g. the shape clock)
         r.nan = std::string("refused: ") + e.what();
       }
-      r.param = shortName(*p), r.factor = f, r.value = v, r.clipped = clipped, r.switched = isSwitch(*p);
+      r.param = shortName(*p), r.factor = f, r.value = v, r.clipped = clipped, r.switched = q.mode;
       report(r);
       runs.push_back(r);
     }

@@ -1,6 +1,6 @@
 // bench_stability.h - `flowform bench --stability`: every control and
 // shape-matching parameter scaled one at a time (x0.25, x0.5, x2, x4 by
-// default; the on/off ones switched) on one scene, each a short run,
+// default; the modes, ParamInfo::mode, run in each other mode) on one scene, each a short run,
 // reporting NaN, explosions and the velocity clamps (docs/RESULTS.md, "Stability sweep").
 #pragma once
 #include <cstdio>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/bench_runner.h"
+#include "core/param_table.h"
 #include "scene/scene.h"
 
 namespace ff::app {
@@ -23,7 +24,7 @@ struct StabilityRun {
   double factor = 1.0;
   double value = 0.0;     // the value run (scaled, then kept in the parameter's range)
   bool clipped = false;   // the scaled value fell outside the range and was clipped to it
-  bool switched = false;  // an on/off parameter, run switched the other way (factor unused)
+  bool switched = false;  // a mode parameter, run in another mode (value; factor unused)
   long steps = 0;
   std::string nan;  // empty, or where a value became NaN or Inf
   double max_speed = 0.0, max_density_error = 0.0;
@@ -33,6 +34,17 @@ struct StabilityRun {
   bool exploded = false;  // NaN, or faster than the explosion speed
   double wall_s = 0.0;
 };
+
+// One parameter of the sweep and what it is run at: a number at each factor
+// of the options, a mode (ParamInfo::mode) in each of its other modes.
+struct StabilityPlan {
+  const ParamInfo* param = nullptr;
+  bool mode = false;
+  std::vector<double> factors;  // the factors; for a mode, the modes
+};
+// The sweep's parameters for a scene with `params` (options.params, or every
+// control and shape-matching number that acts), in the table's order.
+std::vector<StabilityPlan> stabilityPlan(const Params& params, const StabilityOptions& options);
 
 // The speed (m/s) above which a run counts as exploded: twice the speed of a
 // free fall through the container's tallest extent, sqrt(2 g L).

@@ -15,6 +15,7 @@ namespace ff {
 namespace {
 
 using T = ParamInfo::Type;
+constexpr bool kMode = true;  // ParamInfo::mode
 
 #define FF_FIELD(member) [](Params& p) -> void* { return &p.member; }
 
@@ -40,7 +41,7 @@ bool ParamInfo::inRange(double v) const {
 
 const std::vector<ParamInfo>& paramTable() {
   static const std::vector<ParamInfo> table = {
-      // group, key, type, min, max, min_open, doc, field
+      // group, key, type, min, max, min_open, doc, field[, kMode]
       {"fluid", "particle_mass", T::Real, 0.0, 1e3, true, "mass of one fluid particle (kg)",
        FF_FIELD(fluid.particle_mass)},
       {"fluid", "particle_radius", T::Real, 0.0, 10.0, true,
@@ -108,11 +109,11 @@ const std::vector<ParamInfo>& paramTable() {
       {"control", "normalise", T::Integer, 0, 1, false,
        "1: eq. 4 and 6 normalised by the local control weight (attraction_g, velocity_rate; units unused); "
        "0: as the paper writes them (attraction, velocity, units)",
-       FF_FIELD(control.normalise)},
+       FF_FIELD(control.normalise), kMode},
       {"control", "adaptive", T::Integer, 0, 1, false,
        "1: each control particle's radius in eq. 5 follows the target's local thickness and clusters follow "
        "limbs (thin features); 0: one radius, cube clusters (the paper)",
-       FF_FIELD(control.adaptive)},
+       FF_FIELD(control.adaptive), kMode},
       {"control", "attraction_g", T::Real, 0.0, 1e3, false,
        "normalised attraction (normalise = 1): its most, in units of gravity",
        FF_FIELD(control.attraction_g)},
@@ -142,7 +143,7 @@ const std::vector<ParamInfo>& paramTable() {
        "2: the control set never rises above where its rest shape stands on the floor and is righted at "
        "sqrt(g / its centre's height); 1: its height and up axis stay where it was placed, both ways, "
        "relaxing back at the stiffness; 0: they follow the fluid (the paper)",
-       FF_FIELD(shape.anchor)},
+       FF_FIELD(shape.anchor), kMode},
       {"shape_matching", "blend", T::Real, 0.0, 100.0, false,
        "rest-shape blend at a target change, in fall times sqrt(2 d / g) over the largest distance d a "
        "rest position moves (0 = off: the new rest shape at once)",

@@ -27,6 +27,10 @@ struct ParamInfo {
   const char* doc;  // one line: what the parameter means, with its unit
   // The field in a Params (a float, an int, a float[3], a ControlForceUnits or a PressureSolverKind).
   void* (*field)(Params&);
+  // An integer that picks one of the modes min..max (control.normalise,
+  // control.adaptive, shape_matching.anchor), not a count or an amount: a
+  // sweep runs it in each mode instead of scaling it (bench --stability).
+  bool mode = false;
 
   std::string name() const;  // "params.GROUP.KEY"
   // "in [MIN, MAX]" or "in (MIN, MAX]"

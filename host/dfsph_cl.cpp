@@ -52,9 +52,10 @@ void ClDfsphSolver::ensure(const ClFluidRefs& f) {
   cl::CommandQueue& q = *f.queue;
   n_ = f.n;
   const size_t bytes = padded8(n_) * sizeof(float);
-  for (DeviceBuffer* b : {&alpha_, &wgx_, &wgy_,     &wgz_,     &vax_,     &vay_,      &vaz_,    &q_,   &wpx_,
-                          &wpy_,   &wpz_, &alpha_p_, &inc_,     &b_,       &rate_buf_, &dux_,    &duy_, &duz_,
-                          &ux_,    &uy_,  &uz_,      &k_[0][0], &k_[0][1], &k_[1][0],  &k_[1][1]})
+  for (DeviceBuffer* b :
+       {&alpha_, &wgx_, &wgy_, &wgz_,     &vax_,     &vay_,     &vaz_,      &q_,      &wall_,
+        &wpx_,   &wpy_, &wpz_, &alpha_p_, &inc_,     &b_,       &rate_buf_, &dux_,    &duy_,
+        &duz_,   &ux_,  &uy_,  &uz_,      &k_[0][0], &k_[0][1], &k_[1][0],  &k_[1][1]})
     b->ensure(c, bytes);
   bulk_.ensure(c, padded8(n_));
   // k starts at 0 (as the OpenMP solver's); the 8-wide loads read the
@@ -89,7 +90,7 @@ void ClDfsphSolver::computeDensity(const ClFluidRefs& f, const FluidParams& p, c
   }
   a.vol = vol_, a.spacing = vol_spacing_;
   a.full = 4.18879f * a.h * a.h * a.h / vol_;
-  a.eps = 1e-6f * a.inv_h * a.inv_h;
+  a.eps = ff_dfsph_eps(a.inv_h);
   a.bulk_share = kBulkShare;
   a.rho0 = p.rest_density;
   a.cell = f.grid->geom.cell;
@@ -99,11 +100,11 @@ void ClDfsphSolver::computeDensity(const ClFluidRefs& f, const FluidParams& p, c
   if (f.lanes)
     launch(*f.queue, factor_lanes_, padded8(f.n) / 8, *f.x, *f.y, *f.z, cl_uint(f.n), g.start.get(),
            g.geom.geo(), g.geom.dims(), a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(),
-           vax_.get(), vay_.get(), vaz_.get(), q_.get(), bulk_.get(), *f.bad, cl_int(tag));
+           vax_.get(), vay_.get(), vaz_.get(), q_.get(), wall_.get(), bulk_.get(), *f.bad, cl_int(tag));
   else
     launch(*f.queue, factor_, f.n, *f.x, *f.y, *f.z, cl_uint(f.n), g.start.get(), g.geom.geo(), g.geom.dims(),
            a, *f.rho, alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), vax_.get(), vay_.get(), vaz_.get(),
-           q_.get(), bulk_.get(), *f.bad, cl_int(tag));
+           q_.get(), wall_.get(), bulk_.get(), *f.bad, cl_int(tag));
   record(f, "density", "dfsph factor", &t0);
 }
 
@@ -117,7 +118,7 @@ void ClDfsphSolver::sources(const ClFluidRefs& f, bool density, float dt, bool g
                ux_.get(), uy_.get(), uz_.get(), args_, cl_uint(f.n), cl_int(density), 1.0f / rho0_, dt,
                b_.get(), partial_.get(), cl::Local(local * sizeof(double)), state_.get(), cl_int(gated),
                alpha_.get(), wgx_.get(), wgy_.get(), wgz_.get(), vax_.get(), vay_.get(), vaz_.get(), q_.get(),
-               wpx_.get(), wpy_.get(), wpz_.get(), alpha_p_.get());
+               wall_.get(), wpx_.get(), wpy_.get(), wpz_.get(), alpha_p_.get());
 }
 
 void ClDfsphSolver::applyVelocityChange(const ClFluidRefs& f, bool density, const DeviceBuffer& k,
@@ -213,9 +214,9 @@ void ClDfsphSolver::take(long& iterations, long& capped) {
 size_t ClDfsphSolver::memoryBytes() const {
   size_t bytes = 0;
   for (const DeviceBuffer* b :
-       {&alpha_, &wgx_,     &wgy_,     &wgz_,   &vax_,     &vay_,      &vaz_,     &q_,      &wpx_, &wpy_,
-        &wpz_,   &alpha_p_, &bulk_,    &inc_,   &b_,       &rate_buf_, &dux_,     &duy_,    &duz_, &ux_,
-        &uy_,    &uz_,      &partial_, &state_, &k_[0][0], &k_[0][1],  &k_[1][0], &k_[1][1]})
+       {&alpha_, &wgx_, &wgy_,     &wgz_,     &vax_,   &vay_,     &vaz_,      &q_,       &wall_,   &wpx_,
+        &wpy_,   &wpz_, &alpha_p_, &bulk_,    &inc_,   &b_,       &rate_buf_, &dux_,     &duy_,    &duz_,
+        &ux_,    &uy_,  &uz_,      &partial_, &state_, &k_[0][0], &k_[0][1],  &k_[1][0], &k_[1][1]})
     bytes += b->capacity();
   return bytes;
 }

@@ -82,6 +82,7 @@ class ClDfsphSolver {
   ClKernel source_, check_, warm_, increment_, apply_, predict_, finish_, reorder_;
   DeviceBuffer alpha_, wgx_, wgy_, wgz_, bulk_;
   DeviceBuffer vax_, vay_, vaz_, q_;        // the fluid's parts of the factor (ff_dfsph_factor_at)
+  DeviceBuffer wall_;                       // the walls' density shares S(x_i) of the density phase
   DeviceBuffer wpx_, wpy_, wpz_, alpha_p_;  // the density solve's wall gradient and factor at x + dt u
   DeviceBuffer k_[2][2];                    // [double buffer for the reorder][kd, kv]
   int kcur_ = 0;

@@ -25,10 +25,10 @@ typedef float dfsph_sum_t;
 // b = the compression the velocities still cause (density: after dt, from
 // rho and the walls' share at x + dt u, and the walls' gradient wp there and
 // the factor alpha_p with it for this iteration's push and increment,
-// ff_dfsph_wall_predicted; else the divergence where the support is filled),
-// and the sum of b
-// per work-group into partial[group] (local size a power of two, at most
-// 8 bytes of local memory per work-item).
+// ff_dfsph_density_source_at with the density phase's S(x) in `wall`; else
+// the divergence where the support is filled), and the sum of b per
+// work-group into partial[group] (local size a power of two, at most 8
+// bytes of local memory per work-item).
 __kernel void dfsph_source(__global const float* rate, __global const float* rho, __global const uchar* bulk,
                            __global const float* x, __global const float* y, __global const float* z,
                            __global const float* ux, __global const float* uy, __global const float* uz,
@@ -37,25 +37,19 @@ __kernel void dfsph_source(__global const float* rate, __global const float* rho
                            int gated, __global const float* alpha, __global const float* wgx,
                            __global const float* wgy, __global const float* wgz, __global const float* vax,
                            __global const float* vay, __global const float* vaz, __global const float* q,
-                           __global float* wpx, __global float* wpy, __global float* wpz,
-                           __global float* alpha_p) {
+                           __global const float* wall, __global float* wpx, __global float* wpy,
+                           __global float* wpz, __global float* alpha_p) {
   if (gated && state[0]) return;  // the same for every work-item: no barrier is skipped by some only
   dfsph_sum_t sum = 0.0f;
   for (uint i = get_global_id(0); i < n; i += get_global_size(0)) {
     float bi;
     if (density) {
-      const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]},
+      const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]}, g0[3] = {wgx[i], wgy[i], wgz[i]},
                   lo[3] = {P.lo[0], P.lo[1], P.lo[2]}, hi[3] = {P.hi[0], P.hi[1], P.hi[2]};
-      float p1[3], g1[3] = {wgx[i], wgy[i], wgz[i]}, rem = 0.0f, al = alpha[i];
-      if (ff_dfsph_wall_near(pos, u, dt, lo, hi, P.h, p1)) {
-        float g0[3];
-        const float s0 = ff_dfsph_wall(pos, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g0);
-        rem = ff_dfsph_wall_predicted(p1, s0, g0, u, dt, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g1);
-        const float va[3] = {vax[i], vay[i], vaz[i]};
-        al = ff_dfsph_factor_at(g1, va, q[i], P.eps);
-      }
+      float g1[3], al;
+      bi = ff_dfsph_density_source_at(i, pos, u, rho[i] * inv_rho0, rate[i], dt, g0, alpha[i], wall, vax, vay,
+                                      vaz, q, P.eps, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g1, &al);
       wpx[i] = g1[0], wpy[i] = g1[1], wpz[i] = g1[2], alpha_p[i] = al;
-      bi = ff_dfsph_density_source(rho[i] * inv_rho0 + rem, rate[i], dt);
     } else {
       bi = ff_dfsph_divergence_source(rate[i], bulk[i]);
     }

@@ -73,8 +73,8 @@ inline void dfsph_factor_finish(uint i, float xi, float yi, float zi, float w, f
                                 float ssq, float cnt, FfDfsphArgs P, __global float* rho,
                                 __global float* alpha, __global float* wgx, __global float* wgy,
                                 __global float* wgz, __global float* vax, __global float* vay,
-                                __global float* vaz, __global float* q, __global uchar* bulk,
-                                __global int* bad, int tag) {
+                                __global float* vaz, __global float* q, __global float* wall,
+                                __global uchar* bulk, __global int* bad, int tag) {
   const float pos[3] = {xi, yi, zi}, a[3] = {ax, ay, az}, lo[3] = {P.lo[0], P.lo[1], P.lo[2]},
               hi[3] = {P.hi[0], P.hi[1], P.hi[2]};
   float rho_hat, wg[3], share, va[3], qi;
@@ -82,7 +82,7 @@ inline void dfsph_factor_finish(uint i, float xi, float yi, float zi, float w, f
                                          &rho_hat, wg, &share, va, &qi);
   alpha[i] = al;
   wgx[i] = wg[0], wgy[i] = wg[1], wgz[i] = wg[2];
-  vax[i] = va[0], vay[i] = va[1], vaz[i] = va[2], q[i] = qi;
+  vax[i] = va[0], vay[i] = va[1], vaz[i] = va[2], q[i] = qi, wall[i] = share;
   const float r = P.rho0 * rho_hat;
   rho[i] = r;
   bulk[i] = (uchar)ff_dfsph_bulk(cnt, rho_hat - P.vol * w, P.full, P.bulk_share);
@@ -94,7 +94,7 @@ inline void dfsph_factor_finish(uint i, float xi, float yi, float zi, float w, f
       __global const uint *start, float4 geo, int4 dims, FfDfsphArgs P, __global float *rho, \
       __global float *alpha, __global float *wgx, __global float *wgy, __global float *wgz,  \
       __global float *vax, __global float *vay, __global float *vaz, __global float *q,      \
-      __global uchar *bulk, __global int *bad, int tag
+      __global float *wall, __global uchar *bulk, __global int *bad, int tag
 
 __kernel void dfsph_factor(DFSPH_FACTOR_ARGS) {
   const uint i = get_global_id(0);
@@ -103,7 +103,7 @@ __kernel void dfsph_factor(DFSPH_FACTOR_ARGS) {
   float w = 0.0f, ax = 0.0f, ay = 0.0f, az = 0.0f, ssq = 0.0f, cnt = 0.0f;
   DFSPH_WALK_ONE(DFSPH_FACTOR_BODY(float, ))
   dfsph_factor_finish(i, xi, yi, zi, w, ax, ay, az, ssq, cnt, P, rho, alpha, wgx, wgy, wgz, vax, vay, vaz, q,
-                      bulk, bad, tag);
+                      wall, bulk, bad, tag);
 }
 
 __kernel void dfsph_factor_lanes(DFSPH_FACTOR_ARGS) {
@@ -118,7 +118,7 @@ __kernel void dfsph_factor_lanes(DFSPH_FACTOR_ARGS) {
   vstore8(cnt, 0, s[8]);
   for (uint l = 0; l < m; ++l)
     dfsph_factor_finish(i0 + l, s[0][l], s[1][l], s[2][l], s[3][l], s[4][l], s[5][l], s[6][l], s[7][l],
-                        s[8][l], P, rho, alpha, wgx, wgy, wgz, vax, vay, vaz, q, bulk, bad, tag);
+                        s[8][l], P, rho, alpha, wgx, wgy, wgz, vax, vay, vaz, q, wall, bulk, bad, tag);
 }
 
 // Rate of rho_hat of the velocities (ux, uy, uz): rs = sum g (u_i - u_j).r_ij.

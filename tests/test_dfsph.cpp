@@ -97,35 +97,58 @@ TEST(DfsphKernel, WallGradientIsTheGradientOfTheWallShareInACorner) {
   }
 }
 
-// The solver's remainder from the density phase's S(x) and grad S(x)
-// (ff_dfsph_factor_share, ff_dfsph_wall_near, ff_dfsph_wall_remainder_from)
-// is ff_dfsph_wall_remainder bit for bit, near a corner and in the bulk, and
-// is 0 exactly where neither x nor x + dt u is within H / 2 of a wall.
-TEST(DfsphKernel, WallRemainderFromTheDensityPhaseShareIsTheSameBits) {
+// The density solve's source at one particle (ff_dfsph_density_source_at,
+// the body both backends run) from the density phase's S(x), grad S(x), the
+// factor and its parts (ff_dfsph_factor_parts), against the walls' share at
+// x + dt u written out here: S(x + dt u) - S(x) - dt grad S(x).u from two
+// evaluations of the wall, and the factor recomputed with grad S(x + dt u),
+// bit for bit; the source, push and factor of the density phase exactly
+// where neither x nor x + dt u is within H / 2 of a wall (where no wall
+// reaches either end).
+TEST(DfsphKernel, DensitySourceAtAParticleIsTheWallsShareAtThePredictedPosition) {
   const float H = 0.0833f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
-  const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f}, a[3] = {0.0f, 0.0f, 0.0f};
+  const float eps = ff_dfsph_eps(inv_h);
+  const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f};
   unsigned seed = 12345u;
   auto uniform = [&seed](float l, float h) {
     seed = seed * 1664525u + 1013904223u;
     return l + (h - l) * float(seed >> 8) / float(1u << 24);
   };
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   int near = 0, zero = 0;
   for (int t = 0; t < 4000; ++t) {
     const float pos[3] = {uniform(-0.01f, 0.15f), uniform(-0.01f, 0.6f), uniform(0.25f, 0.41f)};
     const float u[3] = {uniform(-3.0f, 3.0f), uniform(-3.0f, 3.0f), uniform(-3.0f, 3.0f)}, dt = 0.004f;
-    float rho_hat, wg[3], share, p1[3];
-    ff_dfsph_factor_share(pos, lo, hi, sp, H, inv_h, vol, 1.0f, a, 1.0f, 0.0f, &rho_hat, wg, &share);
-    const float want = ff_dfsph_wall_remainder(pos, u, dt, lo, hi, sp, vol, H, inv_h);
-    if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) {
+    const float a[3] = {uniform(-50.0f, 50.0f), uniform(-50.0f, 50.0f), uniform(-50.0f, 50.0f)};
+    const float w = uniform(0.5f, 1.5f) / vol, ssq = uniform(1e3f, 1e5f), rate = uniform(-5.0f, 5.0f);
+    float rho_hat, g0[3], s0, va[3], q;
+    const float alpha0 =
+        ff_dfsph_factor_parts(pos, lo, hi, sp, H, inv_h, vol, w, a, ssq, eps, &rho_hat, g0, &s0, va, &q);
+    // The density phase's arrays, this particle at index 1.
+    const float wall[2] = {NAN, s0}, vax[2] = {NAN, va[0]}, vay[2] = {NAN, va[1]}, vaz[2] = {NAN, va[2]},
+                qs[2] = {NAN, q};
+    float g1[3], alpha;
+    const float got = ff_dfsph_density_source_at(1, pos, u, rho_hat, rate, dt, g0, alpha0, wall, vax, vay,
+                                                 vaz, qs, eps, lo, hi, sp, vol, H, inv_h, g1, &alpha);
+    const float p1[3] = {pos[0] + dt * u[0], pos[1] + dt * u[1], pos[2] + dt * u[2]};
+    float want_g[3], g0_again[3];
+    const float s1 = ff_dfsph_wall(p1, lo, hi, sp, vol, H, inv_h, want_g);
+    const float s0_again = ff_dfsph_wall(pos, lo, hi, sp, vol, H, inv_h, g0_again);
+    float p1_near[3];
+    if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1_near)) {
       ++near;
-      const float got = ff_dfsph_wall_remainder_from(p1, share, wg, u, dt, lo, hi, sp, vol, H, inv_h);
-      ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << t << ": " << got << " " << want;
+      const float rem = s1 - s0_again - dt * (g0_again[0] * u[0] + g0_again[1] * u[1] + g0_again[2] * u[2]);
+      ASSERT_TRUE(same(got, ff_dfsph_density_source(rho_hat + rem, rate, dt))) << t;
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(same(g1[c], want_g[c])) << t << " " << c;
+      ASSERT_TRUE(same(alpha, ff_dfsph_factor_at(want_g, va, q, eps))) << t;
     } else {
       ++zero;
-      ASSERT_EQ(want, 0.0f) << t;
       // Neither end within H / 2 of a wall: no wall reaches either.
-      float g[3];
-      EXPECT_EQ(ff_dfsph_wall(pos, lo, hi, sp, vol, H, inv_h, g), 0.0f);
+      ASSERT_EQ(s0_again, 0.0f) << t;
+      ASSERT_EQ(s1, 0.0f) << t;
+      ASSERT_TRUE(same(got, ff_dfsph_density_source(rho_hat, rate, dt))) << t;
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(same(g1[c], g0[c])) << t;
+      ASSERT_TRUE(same(alpha, alpha0)) << t;
     }
   }
   EXPECT_GT(near, 500);

@@ -16,14 +16,6 @@
 #include "ff_control.h"
 #include "ff_rotation.h"
 
-#ifndef FF_GLOBAL
-#ifdef __OPENCL_VERSION__
-#define FF_GLOBAL __global
-#else
-#define FF_GLOBAL
-#endif
-#endif
-
 #define FF_CLUSTER_LANES 8
 
 /* Lane `lane`'s sum of (a, b, c)[members[k]] over k = first + lane, first + lane + 8, ... < end. */

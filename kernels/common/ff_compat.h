@@ -17,6 +17,7 @@
 
 #ifdef __OPENCL_VERSION__
 #define FF_FN inline
+#define FF_GLOBAL __global /* a pointer parameter into device memory; nothing in C++ */
 typedef float3 ff_float3;
 typedef float4 ff_quat; /* (x, y, z, w) */
 #define FF_F3(a, b, c) ((float3)((a), (b), (c)))
@@ -68,6 +69,7 @@ inline ff_float3& operator-=(ff_float3& a, ff_float3 b) {
   return a;
 }
 #define FF_FN inline
+#define FF_GLOBAL
 #define FF_F3(a, b, c) (ff_float3{(a), (b), (c)})
 #define FF_Q(x, y, z, w) (ff_quat{(x), (y), (z), (w)})
 #define FF_SQRT(a) std::sqrt((float)(a))

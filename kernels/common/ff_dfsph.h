@@ -236,6 +236,11 @@ FF_FN float ff_dfsph_factor_at(const float* wgrad, const float* va, float q, flo
   return d > eps ? 1.0f / d : 0.0f;
 }
 
+/* alpha's floor eps (ff_dfsph_factor_at) for the support H = 1 / inv_h. */
+FF_FN float ff_dfsph_eps(float inv_h) {
+  return 1e-6f * inv_h * inv_h;
+}
+
 /* ff_dfsph_factor_share that also gives the fluid's parts of the diagonal,
  * va and q (ff_dfsph_factor_at), for the density solve's factor at the
  * predicted position (ff_dfsph_wall_predicted). */
@@ -292,9 +297,9 @@ FF_FN float ff_dfsph_density_source(float rho_hat, float rate, float dt) {
  * particle squeezed by 5-22 % sat 0.15-0.5 spacings from a wall, moving into
  * it, and the squeeze stayed at a density tolerance of 1e-6 (the solve had
  * converged; its prediction was wrong). Exactly 0 where neither x nor
- * x + dt u is within H / 2 of a wall (ff_dfsph_wall_near).
- * ff_dfsph_wall_remainder below; the OpenMP solver calls its parts with the
- * S(x) and grad S(x) of its density phase.
+ * x + dt u is within H / 2 of a wall (ff_dfsph_wall_near). The solves
+ * compute it with the S(x) and grad S(x) of their density phase
+ * (ff_dfsph_wall_predicted, ff_dfsph_density_source_at).
  *
  * Whether x = pos or x + dt u (set into p1) is within H / 2 of a wall. */
 FF_FN int ff_dfsph_wall_near(const float* pos, const float* u, float dt, const float* lo, const float* hi,
@@ -308,20 +313,9 @@ FF_FN int ff_dfsph_wall_near(const float* pos, const float* u, float dt, const f
   return near;
 }
 
-/* The remainder from the share s0 and gradient g0 at x (ff_dfsph_wall's,
- * which the density phase has already computed for this substep) and
- * p1 = x + dt u (ff_dfsph_wall_near): the same bits as
- * ff_dfsph_wall_remainder, with one wall evaluation instead of two. */
-FF_FN float ff_dfsph_wall_remainder_from(const float* p1, float s0, const float* g0, const float* u, float dt,
-                                         const float* lo, const float* hi, float spacing, float vol, float H,
-                                         float inv_h) {
-  float g1[3];
-  const float s1 = ff_dfsph_wall(p1, lo, hi, spacing, vol, H, inv_h, g1);
-  return s1 - s0 - dt * (g0[0] * u[0] + g0[1] * u[1] + g0[2] * u[2]);
-}
-
 /* The density solve at a particle near a wall (ff_dfsph_wall_near): the
- * remainder as ff_dfsph_wall_remainder_from, and the walls' gradient g1 at
+ * remainder from the share s0 = S(x) and gradient g0 = grad S(x) (the
+ * density phase's) and p1 = x + dt u, and the walls' gradient g1 at
  * the predicted position p1 = x + dt u, which the solve's velocity change
  * and factor take in place of grad S(x): the source measures the walls'
  * share at p1, so the push that removes it is that share's gradient there.
@@ -339,14 +333,31 @@ FF_FN float ff_dfsph_wall_predicted(const float* p1, float s0, const float* g0, 
   return s1 - s0 - dt * (g0[0] * u[0] + g0[1] * u[1] + g0[2] * u[2]);
 }
 
-/* S(x + dt u) - S(x) - dt grad S(x).u as described above. */
-FF_FN float ff_dfsph_wall_remainder(const float* pos, const float* u, float dt, const float* lo,
-                                    const float* hi, float spacing, float vol, float H, float inv_h) {
-  float p1[3];
-  if (!ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) return 0.0f;
-  float g0[3];
-  const float s0 = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, g0);
-  return ff_dfsph_wall_remainder_from(p1, s0, g0, u, dt, lo, hi, spacing, vol, H, inv_h);
+/* The density solve's source at particle i, the body of
+ * DfsphSolver::sources and of the kernel dfsph_source: the compression after
+ * dt (ff_dfsph_density_source) of rho_hat = rho / rho0 moving at the rate
+ * `rate`, with the walls' share at x + dt u where x or x + dt u is near a
+ * wall (ff_dfsph_wall_near, ff_dfsph_wall_predicted). g0 = grad S(x) and
+ * alpha0, and the arrays wall (S(x)), va (vax, vay, vaz) and q: the density
+ * phase's (ff_dfsph_factor_parts); the arrays are read only near a wall.
+ * Writes the walls' gradient the solve pushes with into g1 (g0, or
+ * grad S(x + dt u) near a wall) and the factor there into *alpha (alpha0,
+ * or ff_dfsph_factor_at with g1). */
+FF_FN float ff_dfsph_density_source_at(uint i, const float* pos, const float* u, float rho_hat, float rate,
+                                       float dt, const float* g0, float alpha0, FF_GLOBAL const float* wall,
+                                       FF_GLOBAL const float* vax, FF_GLOBAL const float* vay,
+                                       FF_GLOBAL const float* vaz, FF_GLOBAL const float* q, float eps,
+                                       const float* lo, const float* hi, float spacing, float vol, float H,
+                                       float inv_h, float* g1, float* alpha) {
+  float p1[3], rem = 0.0f;
+  for (int c = 0; c < 3; ++c) g1[c] = g0[c];
+  *alpha = alpha0;
+  if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) {
+    rem = ff_dfsph_wall_predicted(p1, wall[i], g0, u, dt, lo, hi, spacing, vol, H, inv_h, g1);
+    const float va[3] = {vax[i], vay[i], vaz[i]};
+    *alpha = ff_dfsph_factor_at(g1, va, q[i], eps);
+  }
+  return ff_dfsph_density_source(rho_hat + rem, rate, dt);
 }
 
 /* The compression rate the divergence solve removes: only compressing flow,

@@ -153,8 +153,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   }
   // The neighbours of a full support in the rest lattice.
   const float full = 4.18879f * kr.h * kr.h * kr.h / vol_;
-  const float eps = 1e-6f * kr.inv_h * kr.inv_h;
-  eps_ = eps;
+  const float eps = ff_dfsph_eps(kr.inv_h);
   const float rho0 = p.rest_density, vol = vol_;
   float lo[3], hi[3];
   box(c, lo, hi);
@@ -192,7 +191,9 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   const float inv_rho0 = 1.0f / rho0_;
   const float *vx = ux_.data(), *vy = uy_.data(), *vz = uz_.data();
   const FluidState& s = f.s;
-  const float H = vol_h_, inv_h = 1.0f / H;
+  const float H = vol_h_, inv_h = 1.0f / H, eps = ff_dfsph_eps(inv_h);
+  const float *wall = wall_.data(), *vax = vax_.data(), *vay = vay_.data(), *vaz = vaz_.data(),
+              *q = q_.data();
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float rs[8];
     rateSums(f, cache_, gi, vx, vy, vz, b, e, rs);
@@ -202,17 +203,13 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
       float alpha = alpha_[i];
       if (density) {
         // The density after dt, with the walls' share at x + dt u, and the
-        // walls' gradient there for this iteration's push and factor
-        // (ff_dfsph_wall_predicted; S(x) and grad S(x) of the density phase).
+        // walls' gradient and the factor there for this iteration's push.
         const float pos[3] = {s.x[i], s.y[i], s.z[i]};
-        float p1[3], g1[3] = {wg[0], wg[1], wg[2]}, rem = 0.0f;
-        if (ff_dfsph_wall_near(pos, u, dt, lo_, hi_, H, p1)) {
-          rem = ff_dfsph_wall_predicted(p1, wall_[i], wg, u, dt, lo_, hi_, vol_spacing_, vol_, H, inv_h, g1);
-          const float va[3] = {vax_[i], vay_[i], vaz_[i]};
-          alpha = ff_dfsph_factor_at(g1, va, q_[i], eps_);
-        }
+        float g1[3];
+        b_[i] =
+            ff_dfsph_density_source_at(i, pos, u, f.rho[i] * inv_rho0, rate, dt, wg, alpha, wall, vax, vay,
+                                       vaz, q, eps, lo_, hi_, vol_spacing_, vol_, H, inv_h, g1, &alpha);
         wpx_[i] = g1[0], wpy_[i] = g1[1], wpz_[i] = g1[2];
-        b_[i] = ff_dfsph_density_source(f.rho[i] * inv_rho0 + rem, rate, dt);
       } else {
         b_[i] = ff_dfsph_divergence_source(rate, bulk_[i]);
       }

@@ -54,7 +54,6 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> wall_;                     // and the walls' density shares S(x_i)
   std::vector<float> vax_, vay_, vaz_, q_;      // the fluid's parts of the factor (ff_dfsph_factor_at)
   std::vector<float> wpx_, wpy_, wpz_;          // the density solve's wall gradient at x + dt u
-  float eps_ = 0.0f;                            // the factor's floor
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   bool cache_current_ = false;                  // from the density phase until the grid phase reorders

@@ -27,7 +27,7 @@
  * (ff_dfsph_increment), applies each increment's velocity change at once and
  * recomputes b from the new velocities, so the stopping test measures what the
  * velocities will do; alpha_i = 1 / (|V sum_j grad W_ij + grad S_i|^2 +
- * sum_j |V grad W_ij|^2) (ff_dfsph_factor). The wall acts as a static boundary
+ * sum_j |V grad W_ij|^2) (ff_dfsph_factor_parts). The wall acts as a static boundary
  * with the particle's
  * own k_i, in the diagonal as in du. Only compressions are corrected. */
 #ifndef FF_DFSPH_H
@@ -220,10 +220,6 @@ FF_FN void ff_dfsph_wall_support(const float* pos, const float* lo, const float*
   for (int b = 0; b < 3; ++b) out[b] = -m[b] * f[b];
 }
 
-/* Neighbour sums of the density phase (self included): w = sum_j W_ij,
- * a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2. Gives rho_hat, the wall's
- * gradient wgrad, and returns alpha_i (0 where the diagonal is below eps:
- * nothing around to push against). */
 /* alpha_i = 1 / (q + |wgrad - va|^2) from the fluid's parts of the diagonal,
  * va = V sum_j g r_ij and q = V^2 sum_j g^2 |r_ij|^2, and a wall gradient
  * (0 where the diagonal is at most eps). */
@@ -241,9 +237,13 @@ FF_FN float ff_dfsph_eps(float inv_h) {
   return 1e-6f * inv_h * inv_h;
 }
 
-/* ff_dfsph_factor_share that also gives the fluid's parts of the diagonal,
- * va and q (ff_dfsph_factor_at), for the density solve's factor at the
- * predicted position (ff_dfsph_wall_predicted). */
+/* The density phase at one particle from its neighbour sums (self
+ * included): w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2.
+ * Gives rho_hat, the walls' share S(x_i) and gradient wgrad, and the
+ * fluid's parts of the diagonal, va and q (ff_dfsph_factor_at), for the
+ * density solve's factor at the predicted position
+ * (ff_dfsph_density_source_at); returns alpha_i (0 where the diagonal is
+ * below eps: nothing around to push against). */
 FF_FN float ff_dfsph_factor_parts(const float* pos, const float* lo, const float* hi, float spacing, float H,
                                   float inv_h, float vol, float w, const float* a, float ssq, float eps,
                                   float* rho_hat, float* wgrad, float* wall_share, float* va, float* q) {
@@ -253,22 +253,6 @@ FF_FN float ff_dfsph_factor_parts(const float* pos, const float* lo, const float
   *q = vol * vol * ssq;
   for (int c = 0; c < 3; ++c) va[c] = vol * a[c];
   return ff_dfsph_factor_at(wgrad, va, *q, eps);
-}
-
-FF_FN float ff_dfsph_factor_share(const float* pos, const float* lo, const float* hi, float spacing, float H,
-                                  float inv_h, float vol, float w, const float* a, float ssq, float eps,
-                                  float* rho_hat, float* wgrad, float* wall_share) {
-  float va[3], q;
-  return ff_dfsph_factor_parts(pos, lo, hi, spacing, H, inv_h, vol, w, a, ssq, eps, rho_hat, wgrad,
-                               wall_share, va, &q);
-}
-
-/* ff_dfsph_factor_share without the walls' share S(x_i). */
-FF_FN float ff_dfsph_factor(const float* pos, const float* lo, const float* hi, float spacing, float H,
-                            float inv_h, float vol, float w, const float* a, float ssq, float eps,
-                            float* rho_hat, float* wgrad) {
-  float share;
-  return ff_dfsph_factor_share(pos, lo, hi, spacing, H, inv_h, vol, w, a, ssq, eps, rho_hat, wgrad, &share);
 }
 
 /* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall. */

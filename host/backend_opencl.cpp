@@ -147,8 +147,7 @@ void OpenClBackend::uploadControl() {
   upload(q, c, d.x0, s.x0), upload(q, c, d.y0, s.y0), upload(q, c, d.z0, s.z0);
   upload(q, c, d.crs, s.radius_scale);
   upload(q, c, d.gx, s.x), upload(q, c, d.gy, s.y), upload(q, c, d.gz, s.z);  // as Controller::reset
-  for (DeviceBuffer* b :
-       {&d.s, &d.ux, &d.uy, &d.uz, &d.sx, &d.sy, &d.sz, &d.ss, &d.svx, &d.svy, &d.svz, &d.sr2, &d.scoef})
+  for (DeviceBuffer* b : {&d.s, &d.ux, &d.uy, &d.uz, &d.sx, &d.sy, &d.sz, &d.ss, &d.svx, &d.svy, &d.svz})
     b->ensure(c, nc_ * sizeof(float));
   fillBuffer(q, d.s, 1.0f, nc_);
   for (DeviceBuffer* b : {&d.ux, &d.uy, &d.uz}) fillBuffer(q, *b, 0.0f, nc_);

@@ -37,7 +37,6 @@ struct OpenClBackend::Impl {
   DeviceBuffer cx, cy, cz, cvx, cvy, cvz, x0, y0, z0, s, ux, uy, uz, gx, gy, gz;
   DeviceBuffer crs;                            // radius scales (adaptive control)
   DeviceBuffer sx, sy, sz, ss, svx, svy, svz;  // copies in control_r's cell order
-  DeviceBuffer sr2, scoef;                     // their own radius squared and poly6 coefficient
   DeviceBuffer rcentre;     // the recapture's centre (xyz), fade, aim, on, seeds (control_forces.cl)
   DeviceBuffer rseeds[2];   // the recapture's field of targets and its flooding scratch
   size_t rfield_cells = 0;  // cells of the field (rseeds[0]) after the last control forces

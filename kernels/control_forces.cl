@@ -15,22 +15,17 @@
 #include "ff_recapture_field.h"
 #include "ff_sph.h"
 
-// Control particles (position, s, velocity) copied into their grid's order,
-// with their reach in eq. 4 and 6 squared and its poly6 coefficient: the
-// control radius for every one (adaptive control's own radii act in eq. 5
-// only, control_scale.cl; docs/CONTROL_UNITS.md, "Thin features").
+// Control particles (position, s, velocity) copied into their grid's order.
 __kernel void control_gather(__global const uint* order, uint nc, __global const float* x,
                              __global const float* y, __global const float* z, __global const float* s,
                              __global const float* vx, __global const float* vy, __global const float* vz,
-                             float radius, __global float* sx, __global float* sy, __global float* sz,
-                             __global float* ss, __global float* svx, __global float* svy,
-                             __global float* svz, __global float* sr2, __global float* scoef) {
+                             __global float* sx, __global float* sy, __global float* sz, __global float* ss,
+                             __global float* svx, __global float* svy, __global float* svz) {
   const uint k = get_global_id(0);
   if (k >= nc) return;
   const uint i = order[k];
   sx[k] = x[i], sy[k] = y[i], sz[k] = z[i], ss[k] = s[i];
   svx[k] = vx[i], svy[k] = vy[i], svz[k] = vz[i];
-  sr2[k] = radius * radius, scoef[k] = ff_poly6_coef(radius);
 }
 
 // The recapture's centre (out[0..2]), fade (out[3]), whether it aims at
@@ -99,15 +94,15 @@ inline void control_forces_finish(uint e, ff_float3 fa, float wsum, float vsx, f
 
 // The scalars travel in P (FfControlArgs, ff_control_pull.h).
 // The control grid (cells of P.cell = radius / FF_CONTROL_GRID_DIVISIONS) is
-// read in its rows within reach of P.radius (the largest), ascending: the
-// order of Controller::addForces; each control particle k weighs with its own
-// kernel (sr2[k], scoef[k] from control_gather).
+// read in its rows within reach of P.radius, ascending: the order of
+// Controller::addForces. Every control particle weighs with the poly6 kernel
+// of the control radius (adaptive control's own radii act in eq. 5 only,
+// control_scale.cl; docs/CONTROL_UNITS.md, "Thin features").
 __kernel void control_forces(__global const float* x, __global const float* y, __global const float* z,
                              __global const float* vx, __global const float* vy, __global const float* vz,
                              __global const float* rho, uint n, __global const float* sx,
                              __global const float* sy, __global const float* sz, __global const float* ss,
                              __global const float* svx, __global const float* svy, __global const float* svz,
-                             __global const float* sr2, __global const float* scoef,
                              __global const uint* start, float4 geo, int4 dims, FfControlArgs P,
                              __global const float* rcentre, __global const uint* seeds,
                              __global const uint* id, __global const uchar* controlled, __global float* ax,
@@ -117,6 +112,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
   if (e >= n) return;
   const float xe = x[e], ye = y[e], ze = z[e];
   const float reach = ff_query_reach(P.radius, P.cell);
+  const float r2 = P.radius * P.radius, coef = ff_poly6_coef(P.radius);
   const int z0 = ff_cell_coord(ze - reach, geo.z, geo.w, dims.z),
             z1 = ff_cell_coord(ze + reach, geo.z, geo.w, dims.z);
   const int y0 = ff_cell_coord(ye - reach, geo.y, geo.w, dims.y),
@@ -132,7 +128,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       for (uint k = b; k < en; ++k) {
         const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
         const float d2 = FF_DOT(d, d);
-        const float w = ff_poly6(d2, sr2[k], scoef[k]);
+        const float w = ff_poly6(d2, r2, coef);
         if (w <= 0.0f) continue;
         fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
         wsum += w;
@@ -150,10 +146,9 @@ __kernel void control_forces_lanes(
     __global const float* vy, __global const float* vz, __global const float* rho, uint n,
     __global const float* sx, __global const float* sy, __global const float* sz, __global const float* ss,
     __global const float* svx, __global const float* svy, __global const float* svz,
-    __global const float* sr2, __global const float* scoef, __global const uint* start, float4 geo, int4 dims,
-    FfControlArgs P, __global const float* rcentre, __global const uint* seeds, __global const uint* id,
-    __global const uchar* controlled, __global float* ax, __global float* ay, __global float* az,
-    __global uchar* reached, __global int* bad) {
+    __global const uint* start, float4 geo, int4 dims, FfControlArgs P, __global const float* rcentre,
+    __global const uint* seeds, __global const uint* id, __global const uchar* controlled, __global float* ax,
+    __global float* ay, __global float* az, __global uchar* reached, __global int* bad) {
   const uint i0 = 8u * get_global_id(0);
   if (i0 >= n) return;
   const int8 valid = ff_lane_valid(i0, n);
@@ -161,6 +156,7 @@ __kernel void control_forces_lanes(
                ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
   const float reach = ff_query_reach(P.radius, P.cell);
   const FfLanesRows q = ff_lanes_rows(xe, ye, ze, valid, geo, dims, reach);
+  const float r2 = P.radius * P.radius, coef = ff_poly6_coef(P.radius);
   const float8 zero = (float8)(0.0f);
   float8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
   for (int cz = q.z0; cz <= q.z1; ++cz)
@@ -170,8 +166,8 @@ __kernel void control_forces_lanes(
       for (uint k = b; k < en; ++k) {
         const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
         const float8 d2 = dx * dx + dy * dy + dz * dz;
-        if (!any(d2 < sr2[k])) continue;  // no lane in reach: every term is 0
-        const float8 w = ff_poly6_8(d2, sr2[k], scoef[k]);
+        if (!any(d2 < r2)) continue;  // no lane in reach: every term is 0
+        const float8 w = ff_poly6_8(d2, r2, coef);
         const float8 a = ff_attraction_factor_8(sqrt(d2), ss[k], w);
         fax += dx * a, fay += dy * a, faz += dz * a;
         wsum += w;

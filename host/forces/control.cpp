@@ -78,8 +78,8 @@ void ClControl::apply(ClForceContext& c, float dt) {
   d.grids.build(d.control_r, d.cx.get(), d.cy.get(), d.cz.get(), nc, r / float(FF_CONTROL_GRID_DIVISIONS),
                 boxMin(c.box), boxMax(c.box));
   launch(q, gather_, nc, d.control_r.order.get(), cl_uint(nc), d.cx.get(), d.cy.get(), d.cz.get(), d.s.get(),
-         d.cvx.get(), d.cvy.get(), d.cvz.get(), r, d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(),
-         d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(), d.scoef.get());
+         d.cvx.get(), d.cvy.get(), d.cvz.get(), d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(),
+         d.svy.get(), d.svz.get());
   const float cp_volume = c.control.particle_volume;
   const float* g = c.params.fluid.gravity;
   const DeviceGrid& cg = d.control_r;
@@ -112,8 +112,8 @@ void ClControl::apply(ClForceContext& c, float dt) {
       controlArgs(cp, g, c.params.fluid.particle_mass, cp_volume, dt, cg.geom.cell, fg, c.masked, c.tag);
   ClKernel& k = f.lanes ? forces_lanes_ : forces_;
   launch(q, k, f.lanes ? padded8(n) / 8 : n, *f.x, *f.y, *f.z, *f.vx, *f.vy, *f.vz, *f.rho, cl_uint(n),
-         d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(), d.sr2.get(),
-         d.scoef.get(), cg.start.get(), cg.geom.geo(), cg.geom.dims(), P, d.rcentre.get(), d.rseeds[0].get(),
+         d.sx.get(), d.sy.get(), d.sz.get(), d.ss.get(), d.svx.get(), d.svy.get(), d.svz.get(),
+         cg.start.get(), cg.geom.geo(), cg.geom.dims(), P, d.rcentre.get(), d.rseeds[0].get(),
          d.id[d.cur].get(), mask, *f.ax, *f.ay, *f.az, d.reach.get(), *f.bad);
 }
 

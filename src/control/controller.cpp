@@ -158,8 +158,8 @@ typedef int i16 __attribute__((vector_size(64)));
 struct ForceSumsArgs {
   const float *x, *y, *z;  // the sorted fluid
   const UniformGrid* cp_grid;
-  const float *sx, *sy, *sz, *ss, *svx, *svy, *svz, *sr2, *scoef;  // control particles in cp_grid order
-  float r;                                                         // the largest radius
+  const float *sx, *sy, *sz, *ss, *svx, *svy, *svz;  // control particles in cp_grid order
+  float r, r2, coef;  // every control particle's reach (the control radius), squared, its poly6 coefficient
 };
 template <class Lanes>
 FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
@@ -170,7 +170,7 @@ FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, fl
   const float hi[3] = {simd::hmax(xe, n), simd::hmax(ye, n), simd::hmax(ze, n)};
   std::vector<uint32_t>& spans = threadSpans();
   A.cp_grid->rangesNear(lo, hi, A.r, spans);
-  const float *sx = A.sx, *sy = A.sy, *sz = A.sz, *sr2 = A.sr2;
+  const float *sx = A.sx, *sy = A.sy, *sz = A.sz, r2 = A.r2;
   std::vector<uint32_t>& hits = threadHits();
   size_t most = 0;
   for (size_t s = 0; s < spans.size(); s += 2) most += spans[s + 1] - spans[s];
@@ -181,7 +181,7 @@ FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, fl
     for (uint32_t k = spans[s]; k < spans[s + 1]; ++k) {
       const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
       hit[nh] = k;
-      nh += Lanes::any(dx * dx + dy * dy + dz * dz < sr2[k]) ? 1 : 0;
+      nh += Lanes::any(dx * dx + dy * dy + dz * dz < r2) ? 1 : 0;
     }
   const f8 zero = simd::splat(0.0f);
   f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
@@ -189,7 +189,7 @@ FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, fl
     const uint32_t k = hit[q];
     const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
     const f8 d2 = dx * dx + dy * dy + dz * dz;
-    const f8 w = ff_poly6(d2, sr2[k], A.scoef[k]);
+    const f8 w = ff_poly6(d2, r2, A.coef);
     const f8 a = ff_attraction_factor(simd::sqrt8(d2), A.ss[k], w);
     fax += dx * a, fay += dy * a, faz += dz * a;
     wsum += w;
@@ -281,15 +281,11 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   else
     cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell);
   const auto& order = cp_grid_.order();
-  for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_, &sr2_, &scoef_}) a->resize(n);
+  for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_}) a->resize(n);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t i = order[k];
     sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i], ss_[k] = fields_.s[i];
     svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
-    // Every control particle reaches the control radius in eq. 4 and 6 (and
-    // so in the carried gravity and the recapture, which read their sums):
-    // adaptive control's own radii act in eq. 5 only (computeScale).
-    sr2_[k] = r * r, scoef_[k] = ff_poly6_coef(r);
   }
   const float cp_volume = set_.particle_volume;
   // Recapture: the centre of the unfilled control particles and its fade.
@@ -322,9 +318,12 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   const std::vector<uint32_t>& groups = *sf.groups;
   const long ngroups = long(groups.size() / 2);
   reached_.assign(f.n, 0);
-  const ForceSumsArgs fs{sf.x,          sf.y,       sf.z,        &cp_grid_,   sx_.data(),  sy_.data(),
-                         sz_.data(),    ss_.data(), svx_.data(), svy_.data(), svz_.data(), sr2_.data(),
-                         scoef_.data(), r};
+  // Every control particle reaches the control radius in eq. 4 and 6 (and
+  // so in the carried gravity and the recapture, which read their sums):
+  // adaptive control's own radii act in eq. 5 only (computeScale).
+  const ForceSumsArgs fs{sf.x,        sf.y,       sf.z,       &cp_grid_,       sx_.data(),
+                         sy_.data(),  sz_.data(), ss_.data(), svx_.data(),     svy_.data(),
+                         svz_.data(), r,          r * r,      ff_poly6_coef(r)};
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {
@@ -377,8 +376,6 @@ size_t Controller::memoryBytes() const {
                         &svx_,
                         &svy_,
                         &svz_,
-                        &sr2_,
-                        &scoef_,
                         &set_.radius_scale,
                         &cx_,
                         &cy_,

@@ -121,7 +121,6 @@ class Controller {
   std::vector<uint8_t> reached_;
   std::vector<float> fx_, fy_, fz_, fvx_, fvy_, fvz_;       // the fluid in fluid_grid_ order (no view grid)
   std::vector<float> sx_, sy_, sz_, ss_, svx_, svy_, svz_;  // control particles in cp_grid_ order
-  std::vector<float> sr2_, scoef_;  // their reach squared and its poly6 coefficient (the control radius)
   std::vector<ff_quat> q_;
   std::vector<float> cx_, cy_, cz_, gx_, gy_, gz_, cvx_, cvy_, cvz_;
 };

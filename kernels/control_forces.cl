@@ -112,7 +112,6 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
   if (e >= n) return;
   const float xe = x[e], ye = y[e], ze = z[e];
   const float reach = ff_query_reach(P.radius, P.cell);
-  const float r2 = P.radius * P.radius, coef = ff_poly6_coef(P.radius);
   const int z0 = ff_cell_coord(ze - reach, geo.z, geo.w, dims.z),
             z1 = ff_cell_coord(ze + reach, geo.z, geo.w, dims.z);
   const int y0 = ff_cell_coord(ye - reach, geo.y, geo.w, dims.y),
@@ -128,7 +127,7 @@ __kernel void control_forces(__global const float* x, __global const float* y, _
       for (uint k = b; k < en; ++k) {
         const ff_float3 d = FF_F3(sx[k] - xe, sy[k] - ye, sz[k] - ze);
         const float d2 = FF_DOT(d, d);
-        const float w = ff_poly6(d2, r2, coef);
+        const float w = ff_poly6(d2, P.r2, P.coef);
         if (w <= 0.0f) continue;
         fa += ff_attraction_term(d, FF_SQRT(d2), ss[k], w);
         wsum += w;
@@ -156,7 +155,6 @@ __kernel void control_forces_lanes(
                ze = ff_load_lanes(z, i0, valid, FF_LANE_FAR);
   const float reach = ff_query_reach(P.radius, P.cell);
   const FfLanesRows q = ff_lanes_rows(xe, ye, ze, valid, geo, dims, reach);
-  const float r2 = P.radius * P.radius, coef = ff_poly6_coef(P.radius);
   const float8 zero = (float8)(0.0f);
   float8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
   for (int cz = q.z0; cz <= q.z1; ++cz)
@@ -166,8 +164,8 @@ __kernel void control_forces_lanes(
       for (uint k = b; k < en; ++k) {
         const float8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
         const float8 d2 = dx * dx + dy * dy + dz * dz;
-        if (!any(d2 < r2)) continue;  // no lane in reach: every term is 0
-        const float8 w = ff_poly6_8(d2, r2, coef);
+        if (!any(d2 < P.r2)) continue;  // no lane in reach: every term is 0
+        const float8 w = ff_poly6_8(d2, P.r2, P.coef);
         const float8 a = ff_attraction_factor_8(sqrt(d2), ss[k], w);
         fax += dx * a, fay += dy * a, faz += dz * a;
         wsum += w;

@@ -18,6 +18,7 @@ typedef struct {
   float cp_volume, full_at, wa, wv;     /* V_c, ff_control_full_coverage, the pull's weights */
   float gc, unit_scale, dt, radius;     /* gravity carried, 1 or 1 / m, the step, the control radius */
   float rspeed, rrate, cell, fcell_inv; /* recapture speed and rate, control grid cell, 1 / field cell */
+  float r2, coef;                       /* eq. 4 and 6's kernel: radius^2 and its poly6 coefficient */
   float fo[4];                          /* the recapture field's origin (the 4th unused) */
   int fm[4];                            /* the recapture field's cells per axis (the 4th unused) */
   int pull_mode, recapture, use_mask,

@@ -11,7 +11,8 @@ FfControlArgs controlArgs(const ControlParams& cp, const float gravity[3], float
   for (int d = 0; d < 3; ++d) a.g[d] = gravity[d], a.fo[d] = field.o[d], a.fm[d] = field.m[d];
   const float r = cp.radius;
   a.cp_volume = cp_volume;
-  a.full_at = ff_control_full_coverage(cp_volume, r, ff_poly6_coef(r));
+  a.r2 = r * r, a.coef = ff_poly6_coef(r);
+  a.full_at = ff_control_full_coverage(cp_volume, r, a.coef);
   a.wa = cp.pullAttraction(gravity), a.wv = cp.pullVelocity(gravity);
   a.gc = cp.gravity_compensation;
   a.unit_scale = cp.units == ControlForceUnits::Force ? 1.0f / particle_mass : 1.0f;

@@ -9,7 +9,7 @@
 namespace ff {
 
 // 4-byte fields with no padding: the kernels read the same bytes.
-static_assert(sizeof(FfControlArgs) == 28 * 4, "FfControlArgs must hold 4-byte fields only");
+static_assert(sizeof(FfControlArgs) == 30 * 4, "FfControlArgs must hold 4-byte fields only");
 
 // cp: the control parameters (radius already derived for the target);
 // gravity and particle_mass: the fluid's; cp_volume: a control particle's

@@ -159,7 +159,7 @@ struct ForceSumsArgs {
   const float *x, *y, *z;  // the sorted fluid
   const UniformGrid* cp_grid;
   const float *sx, *sy, *sz, *ss, *svx, *svy, *svz;  // control particles in cp_grid order
-  float r, r2, coef;  // every control particle's reach (the control radius), squared, its poly6 coefficient
+  float r, r2, coef;  // every control particle's reach (the control radius), P.r2 and P.coef
 };
 template <class Lanes>
 FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
@@ -321,9 +321,9 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   // Every control particle reaches the control radius in eq. 4 and 6 (and
   // so in the carried gravity and the recapture, which read their sums):
   // adaptive control's own radii act in eq. 5 only (computeScale).
-  const ForceSumsArgs fs{sf.x,        sf.y,       sf.z,       &cp_grid_,       sx_.data(),
-                         sy_.data(),  sz_.data(), ss_.data(), svx_.data(),     svy_.data(),
-                         svz_.data(), r,          r * r,      ff_poly6_coef(r)};
+  const ForceSumsArgs fs{sf.x,        sf.y,       sf.z,       &cp_grid_,   sx_.data(),
+                         sy_.data(),  sz_.data(), ss_.data(), svx_.data(), svy_.data(),
+                         svz_.data(), r,          P.r2,       P.coef};
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {

@@ -180,9 +180,16 @@ void OpenClBackend::setControlledFluid(std::vector<uint8_t> by_id) {
 void OpenClBackend::setMetricsTarget(const TargetShape* target) {
   target_ = target;
   target_voxels_ = target ? targetVoxelCount(*target) : 0;
+  thin_voxels_ = 0;
   if (!target) return;
+  // Inside voxels 1, thin inside voxels 3 (bit 2: metrics_iou's filled_thin).
+  const ThinVoxels thin = metricsThinVoxels(*target, params_.control.radius);
+  thin_voxels_ = thin.count;
+  std::vector<uint8_t> classes(target->grid.inside.size());
+  for (size_t i = 0; i < classes.size(); ++i)
+    classes[i] = uint8_t((target->grid.inside[i] ? 1 : 0) | (thin.thin[i] ? 2 : 0));
   clGuard("uploading the metrics target", [&] {
-    upload(d_->queue(), d_->ctx.context(), d_->inside, target->grid.inside);
+    upload(d_->queue(), d_->ctx.context(), d_->inside, classes);
     finishQueue(d_->queue());
   });
 }

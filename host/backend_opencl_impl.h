@@ -48,7 +48,7 @@ struct OpenClBackend::Impl {
   DeviceBuffer q, com_x, com_y, com_z, ccv_x, ccv_y, ccv_z;
   DeviceBuffer anchor_fix;  // the anchor's correction: dv, dw, com (9 floats; ff_anchor.h)
 
-  DeviceBuffer inside;      // the metrics target's voxels (uchar)
+  DeviceBuffer inside;      // the metrics target's voxels (uchar: 1 inside, 3 inside and thin)
   DeviceBuffer reach;       // per fluid particle: a control particle within reach in control_forces (uchar)
   DeviceBuffer controlled;  // per particle id: controlled fluid (uchar; unused when all the fluid is)
   DeviceBuffer partial;

@@ -95,7 +95,7 @@ StepMetrics OpenClBackend::computeMetrics() {
     const ff_mat3 r = ff_quat_to_mat3(frame_.q);
     ClKernel& k = lanes_ ? d.m_iou_lanes : d.m_iou;
     const size_t local = k.pow2_local, groups = Impl::countGroups(total, local);
-    d.partial.ensure(c, groups * 2 * sizeof(cl_uint));
+    d.partial.ensure(c, groups * 3 * sizeof(cl_uint));
     const cl_int4 tdims = i4(g.nx, g.ny, g.nz, pad);
     const cl_float4 torigin = f4(g.origin.x(), g.origin.y(), g.origin.z(), g.voxel);
     const cl_float4 r0 = f4(r.c0.x, r.c0.y, r.c0.z, 0.0f), r1 = f4(r.c1.x, r.c1.y, r.c1.z, 0.0f),
@@ -103,7 +103,7 @@ StepMetrics OpenClBackend::computeMetrics() {
     const cl_float4 fc = f4(frame_.c[0], frame_.c[1], frame_.c[2], 0.0f),
                     rc = f4(frame_.rest_c[0], frame_.rest_c[1], frame_.rest_c[2], 0.0f);
     const DeviceGrid& fg = d.fluid_h;
-    const cl::LocalSpaceArg tmp = cl::Local(local * 2 * sizeof(cl_uint));
+    const cl::LocalSpaceArg tmp = cl::Local(local * 3 * sizeof(cl_uint));
     if (lanes_)
       launchGroups(q, k, groups, local, d.inside.get(), tdims, torigin, r0, r1, r2, fc, rc, d.X(), d.Y(),
                    d.Z(), fg.order.get(), fg.start.get(), fg.geom.geo(), fg.geom.dims(), fg.geom.cell, h,
@@ -112,11 +112,13 @@ StepMetrics OpenClBackend::computeMetrics() {
       launchGroups(q, k, groups, local, d.inside.get(), tdims, torigin, r0, r1, r2, fc, rc, d.X(), d.Y(),
                    d.Z(), fg.order.get(), fg.start.get(), fg.geom.geo(), fg.geom.dims(), h, mass, 0.5f * rho0,
                    d.partial.get(), tmp);
-    d.partial_uint.resize(groups * 2);
-    blockingRead(q, d.partial.get(), groups * 2 * sizeof(cl_uint), d.partial_uint.data());
+    d.partial_uint.resize(groups * 3);
+    blockingRead(q, d.partial.get(), groups * 3 * sizeof(cl_uint), d.partial_uint.data());
     IouCounts counts;
-    for (size_t k = 0; k < groups; ++k)
-      counts.inter += long(d.partial_uint[2 * k]), counts.uni += long(d.partial_uint[2 * k + 1]);
+    for (size_t k = 0; k < groups; ++k) {
+      counts.inter += long(d.partial_uint[3 * k]), counts.uni += long(d.partial_uint[3 * k + 1]);
+      counts.inter_thin += long(d.partial_uint[3 * k + 2]);
+    }
 
     // Where the fluid lies: (controlled, captured, stray, far) per group.
     ClKernel& ks = d.m_shares;
@@ -134,7 +136,8 @@ StepMetrics OpenClBackend::computeMetrics() {
       sh.controlled += long(d.partial_uint[4 * k]), sh.captured += long(d.partial_uint[4 * k + 1]);
       sh.stray += long(d.partial_uint[4 * k + 2]), sh.far += long(d.partial_uint[4 * k + 3]);
     }
-    setShapeMetrics(m, counts, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
+    setShapeMetrics(m, counts, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_),
+                    thin_voxels_);
     const ShapePose pose = shapePose(*target_, frame_, params_.fluid.gravity, box_.min, box_.max);
     m.tilt = pose.tilt, m.base_height = pose.base_height;
     return m;

@@ -85,10 +85,12 @@ __kernel void metrics_apq(__global const float* x, __global const float* y, __gl
 // target grid padded by tdims.w voxels is placed in the world by the rotation
 // (columns rot0..rot2), x_world = R (centre - rest_c) + frame_c. The fluid
 // (any order) is found through an index grid with cell size >= h.
-// Target voxel (i, j, k) (outside the unpadded grid: not in the target).
+// Target voxel (i, j, k)'s class: 0 outside (and outside the unpadded grid),
+// bit 1 inside the target, bit 2 a thin voxel (filled_thin).
 inline int ff_voxel_in_target(__global const uchar* inside, int4 tdims, int i, int j, int k) {
-  return i >= 0 && j >= 0 && k >= 0 && i < tdims.x && j < tdims.y && k < tdims.z &&
-         inside[(uint)i + (uint)tdims.x * ((uint)j + (uint)tdims.y * (uint)k)];
+  return (i >= 0 && j >= 0 && k >= 0 && i < tdims.x && j < tdims.y && k < tdims.z)
+             ? (int)inside[(uint)i + (uint)tdims.x * ((uint)j + (uint)tdims.y * (uint)k)]
+             : 0;
 }
 
 // World position of the centre of voxel (i, j, k).
@@ -100,16 +102,19 @@ inline ff_float3 ff_voxel_world(float4 torigin, ff_mat3 r, float4 frame_c, float
          FF_F3(frame_c.x, frame_c.y, frame_c.z);
 }
 
-// Sums the work-group's (intersection, union) voxel counts into partial[2 g], partial[2 g + 1].
-void reduce_iou_counts(uint inter, uint uni, __global uint* partial, __local uint* tmp) {
+// Sums the work-group's (intersection, union, thin intersection) voxel counts
+// into partial[3 g .. 3 g + 2].
+void reduce_iou_counts(uint inter, uint uni, uint inter_thin, __global uint* partial, __local uint* tmp) {
   const uint lid = get_local_id(0);
-  tmp[2 * lid] = inter, tmp[2 * lid + 1] = uni;
+  tmp[3 * lid] = inter, tmp[3 * lid + 1] = uni, tmp[3 * lid + 2] = inter_thin;
   barrier(CLK_LOCAL_MEM_FENCE);
   for (uint s = get_local_size(0) / 2; s > 0; s >>= 1) {
-    if (lid < s) tmp[2 * lid] += tmp[2 * (lid + s)], tmp[2 * lid + 1] += tmp[2 * (lid + s) + 1];
+    if (lid < s)
+      for (int c = 0; c < 3; ++c) tmp[3 * lid + c] += tmp[3 * (lid + s) + c];
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (lid == 0) partial[2 * get_group_id(0)] = tmp[0], partial[2 * get_group_id(0) + 1] = tmp[1];
+  if (lid == 0)
+    for (int c = 0; c < 3; ++c) partial[3 * get_group_id(0) + c] = tmp[c];
 }
 
 __kernel void metrics_iou(__global const uchar* inside, int4 tdims /* nx, ny, nz, pad */,
@@ -123,7 +128,7 @@ __kernel void metrics_iou(__global const uchar* inside, int4 tdims /* nx, ny, nz
   const float h2 = h * h, coef = ff_poly6_coef(h);
   ff_mat3 r;
   r.c0 = rot0.xyz, r.c1 = rot1.xyz, r.c2 = rot2.xyz;
-  uint inter = 0, uni = 0;
+  uint inter = 0, uni = 0, inter_thin = 0;
   for (uint v = get_global_id(0); v < total; v += get_global_size(0)) {
     const int i = (int)(v % (uint)nx) - pad, j = (int)((v / (uint)nx) % (uint)ny) - pad,
               k = (int)(v / ((uint)nx * (uint)ny)) - pad;
@@ -143,9 +148,10 @@ __kernel void metrics_iou(__global const uchar* inside, int4 tdims /* nx, ny, nz
       }
     const int in_fluid = mass * sum >= threshold;
     inter += (in_target && in_fluid) ? 1u : 0u;
+    inter_thin += ((in_target & 2) && in_fluid) ? 1u : 0u;
     uni += (in_target || in_fluid) ? 1u : 0u;
   }
-  reduce_iou_counts(inter, uni, partial, tmp);
+  reduce_iou_counts(inter, uni, inter_thin, partial, tmp);
 }
 
 // The same counts for CPU devices: runs of 8 voxels along x as float8 lanes,
@@ -166,7 +172,7 @@ __kernel void metrics_iou_lanes(__global const uchar* inside, int4 tdims /* nx, 
   const int nn[3] = {dims.x, dims.y, dims.z};
   ff_mat3 r;
   r.c0 = rot0.xyz, r.c1 = rot1.xyz, r.c2 = rot2.xyz;
-  uint inter = 0, uni = 0;
+  uint inter = 0, uni = 0, inter_thin = 0;
   for (uint v = get_global_id(0); v < total; v += get_global_size(0)) {
     const int i0 = (int)(v % (uint)runs) * 8, j = (int)((v / (uint)runs) % (uint)ny) - pad,
               k = (int)(v / ((uint)runs * (uint)ny)) - pad;
@@ -175,7 +181,7 @@ __kernel void metrics_iou_lanes(__global const uchar* inside, int4 tdims /* nx, 
     int in_target[8];
     for (int l = 0; l < 8; ++l) {
       const ff_float3 w = ff_voxel_world(torigin, r, frame_c, rest_c, i0 + l - pad, j, k);
-      in_target[l] = l < n && ff_voxel_in_target(inside, tdims, i0 + l - pad, j, k);
+      in_target[l] = l >= n ? 0 : ff_voxel_in_target(inside, tdims, i0 + l - pad, j, k);
       wx[l] = l < n ? w.x : FF_LANE_FAR, wy[l] = l < n ? w.y : FF_LANE_FAR, wz[l] = l < n ? w.z : FF_LANE_FAR;
     }
     const int8 valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < n;
@@ -205,8 +211,9 @@ __kernel void metrics_iou_lanes(__global const uchar* inside, int4 tdims /* nx, 
     for (int l = 0; l < n; ++l) {
       const int in_fluid = mass * sums[l] >= threshold;
       inter += (in_target[l] && in_fluid) ? 1u : 0u;
+      inter_thin += ((in_target[l] & 2) && in_fluid) ? 1u : 0u;
       uni += (in_target[l] || in_fluid) ? 1u : 0u;
     }
   }
-  reduce_iou_counts(inter, uni, partial, tmp);
+  reduce_iou_counts(inter, uni, inter_thin, partial, tmp);
 }

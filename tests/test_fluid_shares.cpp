@@ -55,16 +55,18 @@ ff_float3 world(const ff::TargetShape& t, const ff::RigidFrame& f, int i, int j,
 }
 
 ff::StepMetrics measure(const ff::TargetShape& t, const ff::RigidFrame& f, const Fluid& fl,
-                        const uint8_t* controlled, const uint8_t* reached) {
+                        const uint8_t* controlled, const uint8_t* reached,
+                        const ff::ThinVoxels* thin = nullptr) {
   ff::UniformGrid grid;
   const float lo[3] = {-1.0f, -1.0f, -1.0f}, hi[3] = {1.0f, 1.0f, 1.0f};
   grid.build(fl.size(), fl.x.data(), fl.y.data(), fl.z.data(), kH, lo, hi);
-  const ff::IouCounts c =
-      ff::voxelIou(t, f, kPad, fl.x.data(), fl.y.data(), fl.z.data(), grid, kMass, kH, kRho0, 0.5f);
+  const ff::IouCounts c = ff::voxelIou(t, f, kPad, fl.x.data(), fl.y.data(), fl.z.data(), grid, kMass, kH,
+                                       kRho0, 0.5f, thin ? thin->thin.data() : nullptr);
   const ff::FluidShares s = ff::fluidShares(t, f, kPad, fl.x.data(), fl.y.data(), fl.z.data(), fl.id.data(),
                                             fl.size(), controlled, reached);
   ff::StepMetrics m;
-  ff::setShapeMetrics(m, c, s, ff::targetVoxelCount(t), ff::particleVoxels(kMass / kRho0, t));
+  ff::setShapeMetrics(m, c, s, ff::targetVoxelCount(t), ff::particleVoxels(kMass / kRho0, t),
+                      thin ? thin->count : 0);
   return m;
 }
 
@@ -195,6 +197,81 @@ TEST(FluidShares, ReachFlagsMatchTheDistanceToTheNearestControlParticle) {
   }
   EXPECT_GT(in, 1000);
   EXPECT_GT(out, 1000);  // both kinds occur: the comparison means something
+}
+
+// filled_thin on a shape with a known thin part: a block 9 voxels wide with a
+// rod one voxel thick and 8 long standing on it, in a grid with a border of
+// outside voxels. The thin voxels (local thickness below the control radius,
+// 3.06 voxels: the water preset's) are found by brute force from the
+// definition (docs/METRICS.md): voxel v's thickness is the largest 2 R_c over
+// the inside voxel centres c whose ball reaches v's centre, R_c = c's distance
+// to the nearest outside voxel centre less half a voxel. The fluid fills the
+// rod's lower half and the block's lower four layers; filled_thin must be the
+// share of the brute-force thin voxels that hold a particle.
+TEST(FluidShares, ThinPartsFilledCountsTheThinVoxelsThatHoldFluid) {
+  const int n = 13, rod_top = 19;  // the block: 2 .. 10 in x, y, z; the rod: x = z = 6, y 11 .. 18
+  ff::TargetShape t = boxTarget(n, rod_top + 2, n);
+  ff::VoxelGrid& g = t.grid;
+  auto block = [](int i, int j, int k) {
+    return i >= 2 && i <= 10 && j >= 2 && j <= 10 && k >= 2 && k <= 10;
+  };
+  auto rod = [](int i, int j, int k) { return i == 6 && k == 6 && j >= 11 && j <= 18; };
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) g.inside[g.index(i, j, k)] = block(i, j, k) || rod(i, j, k) ? 1 : 0;
+  const float radius = 3.06f * kVoxel;
+  // Brute force: each inside centre's ball, then each voxel's thickness.
+  std::vector<int> in;
+  std::vector<double> ball;
+  for (size_t c = 0; c < g.inside.size(); ++c) {
+    if (!g.inside[c]) continue;
+    const int ci = int(c % size_t(g.nx)), cj = int((c / size_t(g.nx)) % size_t(g.ny)),
+              ck = int(c / (size_t(g.nx) * size_t(g.ny)));
+    double d2 = 1e30;
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i)
+          if (!g.inside[g.index(i, j, k)])
+            d2 = std::min(d2, double((i - ci) * (i - ci) + (j - cj) * (j - cj) + (k - ck) * (k - ck)));
+    in.push_back(int(c)), ball.push_back(std::sqrt(d2) - 0.5);
+  }
+  std::vector<uint8_t> expect(g.inside.size(), 0);
+  long thin_count = 0;
+  for (size_t a = 0; a < in.size(); ++a) {
+    const int v = in[a], vi = v % g.nx, vj = (v / g.nx) % g.ny, vk = v / (g.nx * g.ny);
+    double thick = 0.0;
+    for (size_t b = 0; b < in.size(); ++b) {
+      const int c = in[b], ci = c % g.nx, cj = (c / g.nx) % g.ny, ck = c / (g.nx * g.ny);
+      const double r2 = double((vi - ci) * (vi - ci) + (vj - cj) * (vj - cj) + (vk - ck) * (vk - ck));
+      if (r2 <= ball[b] * ball[b]) thick = std::max(thick, 2.0 * ball[b]);
+    }
+    expect[size_t(v)] = thick * kVoxel < radius ? 1 : 0;
+    thin_count += expect[size_t(v)];
+  }
+  const ff::ThinVoxels thin = ff::metricsThinVoxels(t, radius);
+  EXPECT_EQ(thin.count, thin_count);
+  EXPECT_TRUE(thin.thin == expect) << "the thin voxels differ from the brute force";
+  // What the brute force must find: the rod is thin, the block's middle is not.
+  for (int j = 11; j <= 18; ++j) EXPECT_EQ(expect[g.index(6, j, 6)], 1) << "rod voxel y " << j;
+  EXPECT_EQ(expect[g.index(6, 6, 6)], 0);
+  ASSERT_GT(thin_count, 8);  // the rod and the block's edges and corners
+
+  Fluid fl;
+  long thin_filled = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        if ((block(i, j, k) && j <= 5) || (rod(i, j, k) && j <= 14)) {
+          fl.add(world(t, ff::RigidFrame(), i, j, k));
+          thin_filled += expect[g.index(i, j, k)];
+        }
+  const std::vector<uint8_t> reached(fl.size(), 1);
+  const ff::StepMetrics m = measure(t, ff::RigidFrame(), fl, nullptr, reached.data(), &thin);
+  EXPECT_NEAR(m.filled_thin, double(thin_filled) / double(thin_count), 1e-12);
+  EXPECT_GT(m.filled_thin, 0.0);
+  EXPECT_LT(m.filled_thin, 1.0);
+  // Without thin voxels it reads 1 (every thin voxel holds fluid).
+  EXPECT_DOUBLE_EQ(measure(t, ff::RigidFrame(), fl, nullptr, reached.data()).filled_thin, 1.0);
 }
 
 }  // namespace

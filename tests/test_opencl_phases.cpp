@@ -48,6 +48,7 @@
 #include "host/cl_context.h"
 #include "host/cl_errors.h"
 #include "host/cl_program.h"
+#include "metrics/fluid_shares.h"
 #include "opencl_backend.h"
 #include "sim/simulation.h"
 #include "test_scenes.h"
@@ -470,6 +471,14 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit =
   EXPECT_NEAR(mo.filled, mc.filled, 1e-3);
   EXPECT_EQ(mo.captured, mc.captured);
   EXPECT_EQ(mo.stray, mc.stray);
+  // filled_thin: the thin voxels' share of the same voxel counts (the OpenCL
+  // backend marks them in its target buffer, the CPU's passes a mask).
+  const long thin = ff::metricsThinVoxels(*p->sim->target(), params.control.radius).count;
+  std::printf("  filled_thin cpu %.6f ocl %.6f over %ld thin voxels\n", mc.filled_thin, mo.filled_thin, thin);
+  if (thin == 0) {
+    EXPECT_EQ(mc.filled_thin, 1.0);
+  }
+  EXPECT_NEAR(mo.filled_thin, mc.filled_thin, thin > 0 ? 1.0 / double(thin) + 1e-12 : 0.0);
 
   // The next grid build reuses the metrics' index grid: still the CPU's order.
   cpu.buildGrid(), ocl.buildGrid();

@@ -33,6 +33,9 @@ struct StepMetrics {
   // How the formed shape stands at the best rigid fit (metrics/pose.h).
   double tilt = 0.0;         // degrees from upright
   double base_height = 0.0;  // m, its lowest point above the floor
+  // Share of the target's thin voxels (local thickness below the control
+  // radius) that hold fluid, at the best fit; 1 where it has none.
+  double filled_thin = 0.0;
   // Pa, the largest fluid pressure, held over the last steps (Simulation::step;
   // drives DFSPH's substeps). Not a column.
   double max_pressure = 0.0;
@@ -41,11 +44,11 @@ struct StepMetrics {
 // The metrics as a table row: the column names (the CSV header of
 // `flowform run --metrics`, the keys of the Python module's arrays) and the
 // values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 20> kMetricColumns = {
+inline constexpr std::array<const char*, 21> kMetricColumns = {
     "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
     "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
     "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps",   "compression",
-    "tilt",           "base_height"};
+    "tilt",           "base_height",   "filled_thin"};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),
@@ -67,7 +70,8 @@ inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics&
           double(m.velocity_clamps),
           m.compression,
           m.tilt,
-          m.base_height};
+          m.base_height,
+          m.filled_thin};
 }
 
 }  // namespace ff

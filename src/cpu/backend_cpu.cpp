@@ -161,6 +161,7 @@ size_t CpuBackend::memoryBytes() const {
 void CpuBackend::setMetricsTarget(const TargetShape* target) {
   target_ = target;
   target_voxels_ = target ? targetVoxelCount(*target) : 0;
+  thin_ = target ? metricsThinVoxels(*target, params_.control.radius) : ThinVoxels();
 }
 
 StepMetrics CpuBackend::computeMetrics() {
@@ -206,13 +207,14 @@ StepMetrics CpuBackend::computeMetrics() {
       }
       const int pad = 2;
       const IouCounts c = voxelIou(*target_, frame_, pad, s.x.data(), s.y.data(), s.z.data(), fluid_.grid,
-                                   mass, h, rho0, 0.5f);
+                                   mass, h, rho0, 0.5f, thin_.thin.empty() ? nullptr : thin_.thin.data());
       const std::vector<uint8_t>& reached = controller_.reached();
       const FluidShares sh =
           fluidShares(*target_, frame_, pad, s.x.data(), s.y.data(), s.z.data(), s.id.data(), size_t(n),
                       controlled_by_id_.empty() ? nullptr : controlled_by_id_.data(),
                       reached.size() == size_t(n) ? reached.data() : nullptr);
-      setShapeMetrics(m, c, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_));
+      setShapeMetrics(m, c, sh, target_voxels_, particleVoxels(params_.fluid.restVolume(), *target_),
+                      thin_.count);
       const ShapePose pose = shapePose(*target_, frame_, params_.fluid.gravity, box_.min, box_.max);
       m.tilt = pose.tilt, m.base_height = pose.base_height;
     }

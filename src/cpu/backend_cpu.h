@@ -8,6 +8,7 @@
 #include "cpu/fluid_cpu.h"
 #include "cpu/forces/cpu_force.h"
 #include "cpu/pressure_solver.h"
+#include "metrics/fluid_shares.h"
 #include "metrics/iou.h"
 #include "sim/backend.h"
 #include "sim/nonfinite_log.h"
@@ -76,6 +77,7 @@ class CpuBackend : public Backend {
   Controller controller_;
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;
+  ThinVoxels thin_;  // the target's thin voxels (metric filled_thin)
   std::vector<uint8_t> controlled_by_id_;
   RigidFrame frame_;
   NonFiniteLog log_;

@@ -2,6 +2,7 @@
 
 #include "ff_metrics.h"
 #include "parallel/parallel_grain.h"
+#include "target/local_thickness.h"
 
 namespace ff {
 
@@ -31,18 +32,26 @@ FluidShares fluidShares(const TargetShape& target, const RigidFrame& frame, int 
 }
 
 void setShapeMetrics(StepMetrics& m, const IouCounts& c, const FluidShares& s, long target_voxels,
-                     double particle_voxels) {
+                     double particle_voxels, long thin_voxels) {
   const double uni = double(c.uni) + double(s.far) * particle_voxels;
   m.iou = uni > 0.0 ? double(c.inter) / uni : 0.0;
   m.filled = target_voxels > 0 ? double(c.inter) / double(target_voxels) : 0.0;
   m.captured = s.controlled > 0 ? double(s.captured) / double(s.controlled) : 0.0;
   m.stray = s.controlled > 0 ? double(s.stray) / double(s.controlled) : 0.0;
+  m.filled_thin = thin_voxels > 0 ? double(c.inter_thin) / double(thin_voxels) : 1.0;
 }
 
 long targetVoxelCount(const TargetShape& target) {
   long k = 0;
   for (uint8_t v : target.grid.inside) k += v ? 1 : 0;
   return k;
+}
+
+ThinVoxels metricsThinVoxels(const TargetShape& target, float radius) {
+  ThinVoxels t;
+  t.thin = thinVoxels(target.grid, radius);
+  for (uint8_t v : t.thin) t.count += v ? 1 : 0;
+  return t;
 }
 
 }  // namespace ff

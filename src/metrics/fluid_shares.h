@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "core/metrics.h"
 #include "metrics/iou.h"
@@ -25,11 +26,12 @@ FluidShares fluidShares(const TargetShape& target, const RigidFrame& frame, int 
                         const float* y, const float* z, const uint32_t* id, size_t n,
                         const uint8_t* controlled_by_id, const uint8_t* reached);
 
-// Sets m.iou, m.filled, m.captured and m.stray from the voxel counts of the
-// padded grid, the fluid shares, the target's voxel count and the rest volume
-// of one fluid particle in voxels (the far fluid counts by its volume).
+// Sets m.iou, m.filled, m.captured, m.stray and m.filled_thin from the voxel
+// counts of the padded grid, the fluid shares, the target's voxel count, the
+// rest volume of one fluid particle in voxels (the far fluid counts by its
+// volume) and the target's thin voxel count (0: filled_thin is 1).
 void setShapeMetrics(StepMetrics& m, const IouCounts& c, const FluidShares& s, long target_voxels,
-                     double particle_voxels);
+                     double particle_voxels, long thin_voxels = 0);
 
 // The rest volume of one fluid particle, in voxels of the target's grid.
 inline double particleVoxels(float rest_volume, const TargetShape& target) {
@@ -39,5 +41,13 @@ inline double particleVoxels(float rest_volume, const TargetShape& target) {
 
 // The number of voxels inside the target.
 long targetVoxelCount(const TargetShape& target);
+
+// The metrics' thin voxels of the target (thinVoxels below the control
+// radius `radius`) and their count.
+struct ThinVoxels {
+  std::vector<uint8_t> thin;  // per voxel of the target's grid, grid index order
+  long count = 0;
+};
+ThinVoxels metricsThinVoxels(const TargetShape& target, float radius);
 
 }  // namespace ff

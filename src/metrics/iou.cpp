@@ -60,7 +60,7 @@ std::vector<uint32_t>& threadSpans() {
 
 IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x,
                    const float* y, const float* z, const UniformGrid& grid, float mass, float h, float rho0,
-                   float fraction) {
+                   float fraction, const uint8_t* thin) {
   const VoxelGrid& g = target.grid;
   const ff_mat3 r = ff_quat_to_mat3(frame.q);
   const float threshold = fraction * rho0;
@@ -68,17 +68,18 @@ IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, 
   // Runs of 8 voxels along x, as lanes.
   const int runs = (nx + 7) / 8;
   const long total = long(runs) * ny * nz;
-  long inter = 0, uni = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : inter, uni)
+  long inter = 0, uni = 0, inter_thin = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : inter, uni, inter_thin)
   for (long v = 0; v < total; ++v) {
     const int i0 = int(v % runs) * 8, j = int((v / runs) % ny) - pad, k = int(v / (long(runs) * ny)) - pad;
     const int n = std::min(8, nx - i0);
     float wx[8], wy[8], wz[8];
-    bool in_target[8];
+    bool in_target[8], in_thin[8];
     for (int l = 0; l < n; ++l) {
       const int i = i0 + l - pad;
-      in_target[l] =
-          i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz && g.inside[g.index(i, j, k)];
+      const bool in_grid = i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz;
+      in_target[l] = in_grid && g.inside[g.index(i, j, k)];
+      in_thin[l] = in_grid && thin && thin[g.index(i, j, k)];
       const Vec3 c = g.center(i, j, k);
       const ff_float3 w = ff_mat3_mul_vec(r, FF_F3(c.x() - frame.rest_c[0], c.y() - frame.rest_c[1],
                                                    c.z() - frame.rest_c[2])) +
@@ -89,11 +90,12 @@ IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, 
     for (int l = 0; l < n; ++l) {
       const bool in_fluid = (fluid >> l) & 1;
       inter += (in_target[l] && in_fluid) ? 1 : 0;
+      inter_thin += (in_thin[l] && in_fluid) ? 1 : 0;
       uni += (in_target[l] || in_fluid) ? 1 : 0;
     }
   }
   IouCounts c;
-  c.inter = inter, c.uni = uni;
+  c.inter = inter, c.uni = uni, c.inter_thin = inter_thin;
   return c;
 }
 

@@ -1,6 +1,8 @@
 // iou.h - voxel intersection over union between the target and the fluid
 // (the voxels of the target's padded grid; fluid beyond it: fluid_shares.h).
 #pragma once
+#include <cstdint>
+
 #include "ff_rotation.h"
 #include "grid/uniform_grid.h"
 #include "target/target_shape.h"
@@ -17,13 +19,15 @@ struct RigidFrame {
 // the world by `frame` (x_world = R (x_rest - rest_c) + c). A voxel is a target
 // voxel if it is inside the shape, a fluid voxel if the SPH density of the
 // fluid particles at its centre is at least `fraction` * rho0. Returns
-// |target & fluid| and |target | fluid| over the padded grid. `grid` indexes
-// the particles (any order) with cell size >= h.
+// |target & fluid| and |target | fluid| over the padded grid, and, where
+// `thin` (per voxel of the unpadded grid, grid index order; nonzero: a thin
+// voxel, see thinVoxels) is given, |thin & fluid|. `grid` indexes the
+// particles (any order) with cell size >= h.
 struct IouCounts {
-  long inter = 0, uni = 0;
+  long inter = 0, uni = 0, inter_thin = 0;
 };
 IouCounts voxelIou(const TargetShape& target, const RigidFrame& frame, int pad, const float* x,
                    const float* y, const float* z, const UniformGrid& grid, float mass, float h, float rho0,
-                   float fraction);
+                   float fraction, const uint8_t* thin = nullptr);
 
 }  // namespace ff

@@ -106,4 +106,13 @@ long thinRidgeVoxels(const VoxelGrid& g, float thickness) {
   return thin;
 }
 
+std::vector<uint8_t> thinVoxels(const VoxelGrid& g, float thickness) {
+  std::vector<uint8_t> thin(g.inside.size(), 0);
+  if (!(thickness > 0.0f)) return thin;
+  // Capped at `thickness`: a voxel below it has its exact local thickness.
+  const std::vector<float> t = localThickness(g, thickness);
+  for (size_t i = 0; i < thin.size(); ++i) thin[i] = g.inside[i] && t[i] < thickness ? 1 : 0;
+  return thin;
+}
+
 }  // namespace ff

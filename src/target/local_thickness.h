@@ -4,6 +4,7 @@
 // distance transform of the voxel grid. Adaptive control
 // (docs/CONTROL_UNITS.md, "Thin features") reads it.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "target/target_shape.h"
@@ -36,5 +37,11 @@ std::vector<float> localThickness(const VoxelGrid& g, float cap);
 // thin rims every box-like shape has along its edges (they lie off the
 // ridge), nor single voxels standing out of a staircase surface (1 deep).
 long thinRidgeVoxels(const VoxelGrid& g, float thickness);
+
+// Per voxel (grid index order): 1 where the voxel is inside and its local
+// thickness (localThickness) is below `thickness` (in the grid's length
+// unit), else 0: the thin parts of the metric `filled_thin`
+// (docs/METRICS.md), below the control radius.
+std::vector<uint8_t> thinVoxels(const VoxelGrid& g, float thickness);
 
 }  // namespace ff

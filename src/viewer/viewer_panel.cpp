@@ -329,7 +329,8 @@ void metricsSection(ViewerUi& ui, ViewerSession& session) {
   const StepMetrics& m = sim.metrics();
   ImGui::Text("fluid particles %ld   control particles %ld", session.scene().fluidCount(), m.control_count);
   ImGui::Text("iou %.3f   coverage %.3f", m.iou, m.coverage);
-  ImGui::Text("filled %.3f   captured %.3f   stray %.3f", m.filled, m.captured, m.stray);
+  ImGui::Text("filled %.3f (thin parts %.3f)   captured %.3f   stray %.3f", m.filled, m.filled_thin,
+              m.captured, m.stray);
   ImGui::Text("max speed %.3f m/s   density error %.3f", m.max_speed, m.density_error);
   const float seconds = float(ui.iou.count()) * session.params().fluid.time_step;
   char title[64];

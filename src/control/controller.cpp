@@ -56,94 +56,105 @@ struct ScaleSums {
   float w, ux, uy, uz;
 };
 
-// Control scale sums around the control particle at p: the fluid in the grid
-// ranges within reach, 8 consecutive sorted positions at a time, position k
-// in lane k mod 8 (kernels/control_scale.cl does the same with float8).
-template <class>
-FF_SIMD_BODY ScaleSums scaleSumsOf(const UniformGrid& grid, size_t n, const float* x, const float* y,
-                                   const float* z, const float* vx, const float* vy, const float* vz,
-                                   const float p[3], float r, float coef) {
+// The lanes of control scale sums for P control particles at once, particle
+// j in lanes 8j .. 8j+7: 8 lanes (f8) for one, 16 (an AVX-512 vector) for two.
+template <int P>
+struct ScaleLanes;
+template <>
+struct ScaleLanes<1> {
+  typedef f8 F;
+  typedef i8 I;
+  // spread: a fluid block or its lane mask, in every particle's lanes;
+  // each: coordinate d of particle j, in j's lanes.
+  [[gnu::always_inline]] static F spread(f8 v) { return v; }
+  [[gnu::always_inline]] static I spread(i8 v) { return v; }
+  [[gnu::always_inline]] static F each(const float (&p)[1][3], int d) { return simd::splat(p[0][d]); }
+};
+#if FF_SIMD_AVX2
+template <>
+struct ScaleLanes<2> {
+  typedef float F __attribute__((vector_size(64)));
+  typedef int I __attribute__((vector_size(64)));
+  [[gnu::always_inline]] static F spread(f8 v) {
+    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+  [[gnu::always_inline]] static I spread(i8 v) {
+    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
+  [[gnu::always_inline]] static F each(const float (&p)[2][3], int d) {
+    const float a = p[0][d], b = p[1][d];
+    return F{a, a, a, a, a, a, a, a, b, b, b, b, b, b, b, b};
+  }
+};
+#endif
+
+// Control scale sums around the control particles at p[0 .. P-1], all of
+// radius r: the fluid in the grid ranges within reach of any of them (rows of
+// their bounding box), 8 consecutive sorted positions at a time, loaded into
+// every particle's 8 lanes, position k in lane k mod 8 of each
+// (kernels/control_scale.cl does the same with float8). Each particle's lanes
+// add every fluid particle within its reach in ascending sorted order, and the
+// others add exactly 0, so its sums do not depend on P, bit for bit: P = 2
+// (scaleSumsPair, AVX-512) is worth it where two particles are close
+// (neighbours in the set): one walk over nearly the same blocks serves both.
+template <class, int P>
+FF_SIMD_BODY void scaleSumsOf(const UniformGrid& grid, size_t n, const float* x, const float* y,
+                              const float* z, const float* vx, const float* vy, const float* vz,
+                              const float (&p)[P][3], float r, float coef, ScaleSums (&out)[P]) {
+  typedef ScaleLanes<P> L;
+  typedef typename L::F F;
+  typedef typename L::I I;
   std::vector<uint32_t>& spans = threadSpans();
-  grid.rangesNear(p, p, r, spans);
+  float lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = hi[d] = p[0][d];
+    for (int j = 1; j < P; ++j) lo[d] = std::min(lo[d], p[j][d]), hi[d] = std::max(hi[d], p[j][d]);
+  }
+  grid.rangesNear(lo, hi, r, spans);
   const float r2 = r * r;
+  const F px = L::each(p, 0), py = L::each(p, 1), pz = L::each(p, 2);
   const i8 iota = {0, 1, 2, 3, 4, 5, 6, 7};
-  const f8 zero = simd::splat(0.0f);
-  f8 sum = zero, ux = zero, uy = zero, uz = zero;
+  const F zero = {};
+  F sum = zero, ux = zero, uy = zero, uz = zero;
   for (size_t s = 0; s < spans.size(); s += 2) {
     const uint32_t b = spans[s], e = spans[s + 1];
     for (uint32_t k = b & ~7u; k < e; k += 8) {
       const int m = int(std::min<size_t>(8, n - k));
-      const f8 fx = simd::loadN(x + k, m, kFar), fy = simd::loadN(y + k, m, kFar),
-               fz = simd::loadN(z + k, m, kFar);
-      const f8 dx = p[0] - fx, dy = p[1] - fy, dz = p[2] - fz;
+      const F fx = L::spread(simd::loadN(x + k, m, kFar)), fy = L::spread(simd::loadN(y + k, m, kFar)),
+              fz = L::spread(simd::loadN(z + k, m, kFar));
+      const F dx = px - fx, dy = py - fy, dz = pz - fz;
+      // The lane test at 8 lanes, then spread: a default-target body's
+      // 16-lane int comparison is scalarised even inlined into AVX-512 code.
       const i8 kk = iota + int(k);
-      const i8 in = (kk >= int(b)) & (kk < int(e));
-      const f8 w = simd::keep(in, ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef));
+      const I in = L::spread((kk >= int(b)) & (kk < int(e)));
+      // w where in, else 0 (simd::keep at P lanes of 8)
+      const F w0 = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
+      I bits;
+      std::memcpy(&bits, &w0, sizeof bits);
+      bits &= in;
+      F w;
+      std::memcpy(&w, &bits, sizeof w);
       sum += w;
-      ux += w * simd::loadN(vx + k, m, 0.0f), uy += w * simd::loadN(vy + k, m, 0.0f);
-      uz += w * simd::loadN(vz + k, m, 0.0f);
+      ux += w * L::spread(simd::loadN(vx + k, m, 0.0f)), uy += w * L::spread(simd::loadN(vy + k, m, 0.0f));
+      uz += w * L::spread(simd::loadN(vz + k, m, 0.0f));
     }
   }
-  auto total = [](f8 v) { return ff_lane_sum8(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]); };
-  return {total(sum), total(ux), total(uy), total(uz)};
+  for (int j = 0; j < P; ++j) {
+    auto total = [j](F v) {
+      const int o = 8 * j;
+      return ff_lane_sum8(v[o], v[o + 1], v[o + 2], v[o + 3], v[o + 4], v[o + 5], v[o + 6], v[o + 7]);
+    };
+    out[j] = {total(sum), total(ux), total(uy), total(uz)};
+  }
 }
 FF_SIMD_DISPATCH(scaleSums)
 
 #if FF_SIMD_AVX2
-// The same sums for two control particles a and b of the same radius at
-// once, in the 16 lanes of AVX-512 vectors: a in lanes 0-7, b in lanes 8-15,
-// each fluid block of 8 loaded into both halves. The blocks are those of the
-// grid ranges within reach of either (rows of their bounding box): each half
-// adds every fluid particle within its reach in ascending sorted order, in its
-// lane k mod 8, and the others add exactly 0, so each half's sums are
-// scaleSums' bit for bit. Worth it where a and b are close (neighbours in the
-// set): one walk over nearly the same blocks serves both.
-typedef float f16 __attribute__((vector_size(64)));
-typedef int i16 __attribute__((vector_size(64)));
 [[gnu::target("avx512f")]] void scaleSumsPair(const UniformGrid& grid, size_t n, const float* x,
                                               const float* y, const float* z, const float* vx,
-                                              const float* vy, const float* vz, const float pa[3],
-                                              const float pb[3], float r, float coef, ScaleSums out[2]) {
-  std::vector<uint32_t>& spans = threadSpans();
-  const float lo[3] = {std::min(pa[0], pb[0]), std::min(pa[1], pb[1]), std::min(pa[2], pb[2])};
-  const float hi[3] = {std::max(pa[0], pb[0]), std::max(pa[1], pb[1]), std::max(pa[2], pb[2])};
-  grid.rangesNear(lo, hi, r, spans);
-  const float r2 = r * r;
-  auto both = [](f8 v) {
-    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
-  };
-  auto halves = [](float a, float b) { return f16{a, a, a, a, a, a, a, a, b, b, b, b, b, b, b, b}; };
-  const f16 px = halves(pa[0], pb[0]), py = halves(pa[1], pb[1]), pz = halves(pa[2], pb[2]);
-  const i16 iota = {0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7};
-  const f16 zero = {};
-  f16 sum = zero, ux = zero, uy = zero, uz = zero;
-  for (size_t s = 0; s < spans.size(); s += 2) {
-    const uint32_t b = spans[s], e = spans[s + 1];
-    for (uint32_t k = b & ~7u; k < e; k += 8) {
-      const int m = int(std::min<size_t>(8, n - k));
-      const f16 fx = both(simd::loadN(x + k, m, kFar)), fy = both(simd::loadN(y + k, m, kFar)),
-                fz = both(simd::loadN(z + k, m, kFar));
-      const f16 dx = px - fx, dy = py - fy, dz = pz - fz;
-      const i16 kk = iota + int(k);
-      const i16 in = (kk >= int(b)) & (kk < int(e));
-      const f16 w0 = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
-      i16 bits;
-      std::memcpy(&bits, &w0, sizeof bits);
-      bits &= in;
-      f16 w;
-      std::memcpy(&w, &bits, sizeof w);
-      sum += w;
-      ux += w * both(simd::loadN(vx + k, m, 0.0f)), uy += w * both(simd::loadN(vy + k, m, 0.0f));
-      uz += w * both(simd::loadN(vz + k, m, 0.0f));
-    }
-  }
-  for (int h = 0; h < 2; ++h) {
-    auto total = [h](f16 v) {
-      const int o = 8 * h;
-      return ff_lane_sum8(v[o], v[o + 1], v[o + 2], v[o + 3], v[o + 4], v[o + 5], v[o + 6], v[o + 7]);
-    };
-    out[h] = {total(sum), total(ux), total(uy), total(uz)};
-  }
+                                              const float* vy, const float* vz, const float (&p)[2][3],
+                                              float r, float coef, ScaleSums (&out)[2]) {
+  scaleSumsOf<simd::PortableLanes>(grid, n, x, y, z, vx, vy, vz, p, r, coef, out);
 }
 #endif
 
@@ -238,24 +249,28 @@ bool Controller::computeScale(const FluidView& f) {
   for (long q = 0; q < npairs; ++q) {
     const long i0 = 2 * q, i1 = std::min(n, i0 + 2);
     ScaleSums t[2];
-    const float ra = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0)]), ca = ff_poly6_coef(ra);
-    const float pa[3] = {set_.x[i0], set_.y[i0], set_.z[i0]};
+    const float ra = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0)]);
     const long ib = std::min(i0 + 1, n - 1);  // b: the pair's second, if there is one
     const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(ib)]);
-    const float pb[3] = {set_.x[ib], set_.y[ib], set_.z[ib]};
     bool done = false;
 #if FF_SIMD_AVX2
+    const float ab[2][3] = {{set_.x[i0], set_.y[i0], set_.z[i0]}, {set_.x[ib], set_.y[ib], set_.z[ib]}};
     const float near = 0.5f * ra;
-    if (pairs && i1 == i0 + 2 && rb == ra && std::fabs(pa[0] - pb[0]) <= near &&
-        std::fabs(pa[1] - pb[1]) <= near && std::fabs(pa[2] - pb[2]) <= near) {
-      scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, pb, ra, ca, t);
+    if (pairs && i1 == i0 + 2 && rb == ra && std::fabs(ab[0][0] - ab[1][0]) <= near &&
+        std::fabs(ab[0][1] - ab[1][1]) <= near && std::fabs(ab[0][2] - ab[1][2]) <= near) {
+      scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, ab, ra, ff_poly6_coef(ra), t);
       done = true;
     }
 #endif
+    auto one = [&](long i, float r) {  // particle i's sums, alone
+      const float p[1][3] = {{set_.x[i], set_.y[i], set_.z[i]}};
+      ScaleSums o[1];
+      scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, ff_poly6_coef(r), o);
+      return o[0];
+    };
     if (!done) {
-      t[0] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pa, ra, ca);
-      if (i1 == i0 + 2)
-        t[1] = scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, pb, rb, ff_poly6_coef(rb));
+      t[0] = one(i0, ra);
+      if (i1 == i0 + 2) t[1] = one(ib, rb);
     }
     for (long i = i0; i < i1; ++i) {
       const ScaleSums& ti = t[i - i0];

@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "control/shape_matching.h"
 #include "cpu/backend_cpu.h"
@@ -25,6 +27,7 @@ namespace {
 
 void measure(double seconds, const char* path) {
   ff::Simulation sim(ff::loadScene(path), std::make_unique<ff::CpuBackend>(1));
+  if (!sim.target()) throw std::runtime_error(std::string(path) + ": the scene has no target");
   while (sim.time() < seconds - 1e-6) sim.step();
   // The control particles' best rigid fit, as the metrics take it.
   const ff::ControlSet& set = static_cast<ff::CpuBackend&>(sim.backend()).controller().set();

@@ -17,6 +17,13 @@ float gravityScale(const float g[3]) {
   const float m = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   return m > 0.0f ? m : 9.81f;
 }
+// The fall time sqrt(L / |g|) (s) of a length L (m): the clock of a scene of
+// size L, sqrt(c) times as long in a scene c times as large. T is the
+// precision the division and the root round in (float or double).
+template <class T>
+T fallTime(T length, const float g[3]) {
+  return std::sqrt(length / T(gravityScale(g)));
+}
 }  // namespace
 
 float FluidParams::restSpacing() const {
@@ -29,8 +36,7 @@ double FluidParams::substepCap() const {
   // long, the same on its own clock; max_substep (s) stays an upper bound.
   const double cap = double(max_substep);
   if (max_substep_fall <= 0.0f) return cap;
-  return std::min(cap,
-                  double(max_substep_fall) * std::sqrt(double(smoothing_radius) / gravityScale(gravity)));
+  return std::min(cap, double(max_substep_fall) * fallTime(double(smoothing_radius), gravity));
 }
 
 int FluidParams::substepsFor(double max_pressure, double max_speed) const {
@@ -74,11 +80,11 @@ int ControlParams::pullMode() const {
 }
 
 float ShapeMatchParams::timeStepFor(float radius, const float g[3]) const {
-  return time_step_fall > 0.0f ? time_step_fall * std::sqrt(radius / gravityScale(g)) : time_step;
+  return time_step_fall > 0.0f ? time_step_fall * fallTime(radius, g) : time_step;
 }
 
 float ShapeMatchParams::firstBlendTime(float radius, const float g[3]) const {
-  return blend_first > 0.0f ? blend_first * std::sqrt(2.0f * radius / gravityScale(g)) : 0.0f;
+  return blend_first > 0.0f ? blend_first * fallTime(2.0f * radius, g) : 0.0f;
 }
 
 double ShapeMatchParams::clustersPerParticle() const {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -221,6 +222,44 @@ TEST(ViewerSession, ResetWarnsWhenTheKeptRegionHoldsNoFluidAtTimeZero) {
   EXPECT_EQ(s.targetLabel(), "none");
   EXPECT_EQ(s.region().kind, ff::RegionDesc::Kind::Box);  // kept, for the user to change
   EXPECT_NO_THROW(s.step());
+}
+
+// The panel's "sm time step s" slider shows ShapeMatchParams::timeStepFor and
+// sets it with setTimeStepFor. Where shape_matching.time_step_fall > 0 (the
+// water preset), the session derives time_step from it at every target and
+// every edit, so a slider that wrote time_step was undone at once; it moves
+// the multiple instead and the session steps as asked. The fall time
+// sqrt(r / |g|) is computed here in double.
+TEST(ViewerSession, TheShapeStepSliderSetsTheFallTimeMultipleWhereThatRules) {
+  ff::SceneDesc scene = tinyScene();
+  scene.params.shape.time_step_fall = 0.09f;
+  ViewerSession s(scene, cpu());
+  ASSERT_NE(s.sim().target(), nullptr);
+  ff::Params p = s.params();
+  const float* g = p.fluid.gravity;
+  const double fall = std::sqrt(double(p.control.radius) /
+                                std::sqrt(double(g[0]) * g[0] + double(g[1]) * g[1] + double(g[2]) * g[2]));
+  EXPECT_NEAR(s.params().shape.time_step, 0.09 * fall, 1e-6 * fall);
+  EXPECT_NEAR(p.shape.timeStepFor(p.control.radius, g), 0.09 * fall, 1e-6 * fall);  // what the slider shows
+
+  p.shape.time_step = 0.004f;  // written directly: overridden
+  s.setParams(p);
+  EXPECT_NEAR(s.params().shape.time_step, 0.09 * fall, 1e-6 * fall);
+
+  p = s.params();
+  p.shape.setTimeStepFor(0.004f, p.control.radius, g);  // as the slider does
+  s.setParams(p);
+  EXPECT_NEAR(s.params().shape.time_step, 0.004, 1e-6 * 0.004);
+  EXPECT_NEAR(s.params().shape.time_step_fall, 0.004 / fall, 1e-6 * 0.004 / fall);
+  EXPECT_NO_THROW(s.step());
+  EXPECT_NEAR(s.params().shape.time_step, 0.004, 1e-6 * 0.004);  // and stays
+
+  p = s.params();
+  p.shape.time_step_fall = 0.0f;  // the paper: the slider's seconds themselves
+  p.shape.setTimeStepFor(0.003f, p.control.radius, g);
+  s.setParams(p);
+  EXPECT_EQ(s.params().shape.time_step, 0.003f);
+  EXPECT_EQ(s.params().shape.time_step_fall, 0.0f);
 }
 
 }  // namespace

@@ -167,6 +167,10 @@ struct ShapeMatchParams {
   float time_step_fall = 0.0f;
   // The shape-matching step for control radius `radius` under gravity `g`.
   float timeStepFor(float radius, const float g[3]) const;
+  // Makes timeStepFor(radius, g) give `seconds`: time_step, or where
+  // time_step_fall > 0 (which would override it) the multiple of the fall
+  // time that gives it, to within float rounding (the viewer's slider).
+  void setTimeStepFor(float seconds, float radius, const float g[3]);
   // The rest-shape blend of a run's first target (docs/CONTROL_UNITS.md,
   // "Rest-shape blend"): its rest shape morphs from where placement puts the
   // control particles (the target stretched over the picked fluid) into the

@@ -333,7 +333,10 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
     startBlend(placed, params.shape.blend, fp.gravity);
   else
     startBlendOver(placed, params.shape.firstBlendTime(params.control.radius, fp.gravity));
-  if (params.control.radius != scene_.params.control.radius) {
+  // The derived radius and shape-matching step take effect (with the radius
+  // in metres and time_step_fall > 0 only the step changes, at the first target).
+  if (params.control.radius != scene_.params.control.radius ||
+      params.shape.time_step != scene_.params.shape.time_step) {
     scene_.params = params;
     backend_->setParams(scene_.params);
   }

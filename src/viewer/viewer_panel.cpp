@@ -253,7 +253,20 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
   if (ImGui::TreeNodeEx("Shape matching", ImGuiTreeNodeFlags_DefaultOpen)) {
     ShapeMatchParams& s = p.shape;
     changed |= floatParam("stiffness alpha", s.stiffness, 0.0f, 1.0f, false, "eq. 7");
-    changed |= floatParam("sm time step s", s.time_step, 1e-3f, 0.05f, true, "the shape-matching clock");
+    // The step the shape matching takes: with time_step_fall > 0 the scene's
+    // fall time sets it (time_step would be overridden at once), and
+    // dragging changes that multiple.
+    float step = s.timeStepFor(p.control.radius, p.fluid.gravity);
+    char step_help[256] = "the shape-matching clock";
+    if (s.time_step_fall > 0.0f)
+      std::snprintf(step_help, sizeof step_help,
+                    "the shape-matching clock, set by shape_matching.time_step_fall: %.4g fall times "
+                    "sqrt(r / g) of the control radius r = %.4g m; dragging changes that multiple",
+                    double(s.time_step_fall), double(p.control.radius));
+    if (floatParam("sm time step s", step, 1e-3f, 0.05f, true, step_help)) {
+      s.setTimeStepFor(step, p.control.radius, p.fluid.gravity);
+      changed = true;
+    }
     changed |= intParam("cluster stride", s.cluster_stride, 1, 8, "a cluster on every n-th reference voxel");
     changed |= intParam("cluster half width", s.cluster_half_width, 1, 6, "cluster size in voxels");
     changed |=

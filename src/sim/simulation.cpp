@@ -209,7 +209,10 @@ void Simulation::step() {
     // step's highest and the last one's, halved every 0.1 s. A column's
     // highest pressure swings by half between steps as it settles, and one
     // long substep taken at a low swing kicks it (measured, docs/PRESETS.md).
-    const double held = metrics_.max_pressure * std::exp2(-double(fp.time_step) / 0.1);
+    // It decays over the steps since the last metrics (one step unless
+    // --metrics-every skipped some), so its half-life is 0.1 s for any K.
+    const double since = double(step_ - unchecked_from_);
+    const double held = metrics_.max_pressure * std::exp2(-since * double(fp.time_step) / 0.1);
     timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
     metrics_.max_pressure = std::max(metrics_.max_pressure, held);
     check(step, time, unchecked_from_ < step ? 0 : n);

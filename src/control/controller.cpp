@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "control/control_args.h"
 #include "control/shape_match_args.h"
@@ -127,13 +126,7 @@ FF_SIMD_BODY void scaleSumsOf(const UniformGrid& grid, size_t n, const float* x,
       // 16-lane int comparison is scalarised even inlined into AVX-512 code.
       const i8 kk = iota + int(k);
       const I in = L::spread((kk >= int(b)) & (kk < int(e)));
-      // w where in, else 0 (simd::keep at P lanes of 8)
-      const F w0 = ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef);
-      I bits;
-      std::memcpy(&bits, &w0, sizeof bits);
-      bits &= in;
-      F w;
-      std::memcpy(&w, &bits, sizeof w);
+      const F w = simd::keep(in, ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef));
       sum += w;
       ux += w * L::spread(simd::loadN(vx + k, m, 0.0f)), uy += w * L::spread(simd::loadN(vy + k, m, 0.0f));
       uz += w * L::spread(simd::loadN(vz + k, m, 0.0f));

@@ -31,7 +31,7 @@ FluidShares fluidShares(const TargetShape& target, const RigidFrame& frame, int 
 // rest volume of one fluid particle in voxels (the far fluid counts by its
 // volume) and the target's thin voxel count (0: filled_thin is 1).
 void setShapeMetrics(StepMetrics& m, const IouCounts& c, const FluidShares& s, long target_voxels,
-                     double particle_voxels, long thin_voxels = 0);
+                     double particle_voxels, long thin_voxels);
 
 // The rest volume of one fluid particle, in voxels of the target's grid.
 inline double particleVoxels(float rest_volume, const TargetShape& target) {

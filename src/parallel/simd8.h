@@ -50,12 +50,16 @@ inline f8 sqrt8(f8 v) {
   return r;
 }
 
-// m ? a : 0, lane by lane (m from a comparison: all bits set or none).
-inline f8 keep(i8 m, f8 a) {
-  i8 bits;
+// m ? a : 0, lane by lane (m from a comparison: all bits set or none), for
+// float vectors of any width and int masks of the same size (f8 and i8, or
+// the 16 lanes of the control scale sums' AVX-512 walk).
+template <class I, class F>
+[[gnu::always_inline]] inline F keep(I m, F a) {
+  static_assert(sizeof(I) == sizeof(F), "the mask has a lane per float");
+  I bits;
   std::memcpy(&bits, &a, sizeof bits);
   bits &= m;
-  f8 r;
+  F r;
   std::memcpy(&r, &bits, sizeof r);
   return r;
 }

@@ -185,6 +185,7 @@ void OpenClBackend::setMetricsTarget(const TargetShape* target) {
   // Inside voxels 1, thin inside voxels 3 (bit 2: metrics_iou's filled_thin).
   const ThinVoxels thin = metricsThinVoxels(*target, params_.control.radius);
   thin_voxels_ = thin.count;
+  thin_radius_ = params_.control.radius;
   std::vector<uint8_t> classes(target->grid.inside.size());
   for (size_t i = 0; i < classes.size(); ++i)
     classes[i] = uint8_t((target->grid.inside[i] ? 1 : 0) | (thin.thin[i] ? 2 : 0));

@@ -122,8 +122,9 @@ class OpenClBackend : public Backend {
   double clock_ = 0.0;  // shape-matching time not yet consumed
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;
-  long thin_voxels_ = 0;  // the target's thin voxels (metric filled_thin)
-  bool masked_ = false;   // setControlledFluid gave a mask (else all the fluid is controlled)
+  long thin_voxels_ = 0;      // the target's thin voxels (metric filled_thin)
+  float thin_radius_ = 0.0f;  // the control radius thin_voxels_ (bit 2 of `inside`) was found for
+  bool masked_ = false;       // setControlledFluid gave a mask (else all the fluid is controlled)
   RigidFrame frame_;
   // The fluid h-grid: Stale after the positions change; Index when built over
   // the current positions without reordering (by the metrics, reused by the

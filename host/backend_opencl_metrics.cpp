@@ -63,6 +63,9 @@ StepMetrics OpenClBackend::computeMetrics() {
     m.coverage = reduce(d.m_coverage, nc_, 1, 0u, d.s.get(), cl_uint(nc_))[0] / double(nc_);
     m.control_count = long(nc_);
     if (!target_ || n_ == 0) return m;
+    // The thin voxels follow the control radius: a params edit since the
+    // target was set (viewer, script, Python) finds them again.
+    if (thin_radius_ != params_.control.radius) setMetricsTarget(target_);
 
     // bestFitFrame: centre of mass, A_pq about it, rotation warm-started from the last frame.
     const std::vector<double> sum =

@@ -14,6 +14,7 @@
 
 #include "control/controller.h"
 #include "core/params.h"
+#include "test_scenes.h"
 
 namespace {
 
@@ -39,11 +40,7 @@ ff::ControlSet column(double tilt) {
   s.vx.assign(n, 0.0f), s.vy.assign(n, 0.0f), s.vz.assign(n, 0.0f);
   s.rest_cx = float(c[0]), s.rest_cy = float(c[1]), s.rest_cz = float(c[2]);
   s.particle_volume = kSpacing * kSpacing * kSpacing;
-  ff::Clusters& cl = s.clusters;
-  cl.start = {0, uint32_t(n)};
-  for (uint32_t p = 0; p < n; ++p) cl.members.push_back(p), cl.of.push_back(0), cl.of_start.push_back(p);
-  cl.of_start.push_back(uint32_t(n));
-  cl.rest_cx = {s.rest_cx}, cl.rest_cy = {s.rest_cy}, cl.rest_cz = {s.rest_cz};
+  fftest::setOneCluster(s);
   return s;
 }
 

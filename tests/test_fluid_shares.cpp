@@ -14,11 +14,13 @@
 #include <vector>
 
 #include "control/controller.h"
+#include "cpu/backend_cpu.h"
 #include "ff_rotation.h"
 #include "grid/uniform_grid.h"
 #include "metrics/fluid_shares.h"
 #include "metrics/iou.h"
 #include "target/target_shape.h"
+#include "thin_target.h"
 
 namespace {
 
@@ -209,45 +211,14 @@ TEST(FluidShares, ReachFlagsMatchTheDistanceToTheNearestControlParticle) {
 // rod's lower half and the block's lower four layers; filled_thin must be the
 // share of the brute-force thin voxels that hold a particle.
 TEST(FluidShares, ThinPartsFilledCountsTheThinVoxelsThatHoldFluid) {
-  const int n = 13, rod_top = 19;  // the block: 2 .. 10 in x, y, z; the rod: x = z = 6, y 11 .. 18
-  ff::TargetShape t = boxTarget(n, rod_top + 2, n);
-  ff::VoxelGrid& g = t.grid;
-  auto block = [](int i, int j, int k) {
-    return i >= 2 && i <= 10 && j >= 2 && j <= 10 && k >= 2 && k <= 10;
-  };
-  auto rod = [](int i, int j, int k) { return i == 6 && k == 6 && j >= 11 && j <= 18; };
-  for (int k = 0; k < g.nz; ++k)
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) g.inside[g.index(i, j, k)] = block(i, j, k) || rod(i, j, k) ? 1 : 0;
+  const ff::TargetShape t = fftest::thinTarget(kVoxel);
+  const ff::VoxelGrid& g = t.grid;
+  auto block = fftest::thinTargetBlock;
+  auto rod = fftest::thinTargetRod;
   const float radius = 3.06f * kVoxel;
-  // Brute force: each inside centre's ball, then each voxel's thickness.
-  std::vector<int> in;
-  std::vector<double> ball;
-  for (size_t c = 0; c < g.inside.size(); ++c) {
-    if (!g.inside[c]) continue;
-    const int ci = int(c % size_t(g.nx)), cj = int((c / size_t(g.nx)) % size_t(g.ny)),
-              ck = int(c / (size_t(g.nx) * size_t(g.ny)));
-    double d2 = 1e30;
-    for (int k = 0; k < g.nz; ++k)
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i)
-          if (!g.inside[g.index(i, j, k)])
-            d2 = std::min(d2, double((i - ci) * (i - ci) + (j - cj) * (j - cj) + (k - ck) * (k - ck)));
-    in.push_back(int(c)), ball.push_back(std::sqrt(d2) - 0.5);
-  }
-  std::vector<uint8_t> expect(g.inside.size(), 0);
+  const std::vector<uint8_t> expect = fftest::bruteThinVoxels(g, radius);
   long thin_count = 0;
-  for (size_t a = 0; a < in.size(); ++a) {
-    const int v = in[a], vi = v % g.nx, vj = (v / g.nx) % g.ny, vk = v / (g.nx * g.ny);
-    double thick = 0.0;
-    for (size_t b = 0; b < in.size(); ++b) {
-      const int c = in[b], ci = c % g.nx, cj = (c / g.nx) % g.ny, ck = c / (g.nx * g.ny);
-      const double r2 = double((vi - ci) * (vi - ci) + (vj - cj) * (vj - cj) + (vk - ck) * (vk - ck));
-      if (r2 <= ball[b] * ball[b]) thick = std::max(thick, 2.0 * ball[b]);
-    }
-    expect[size_t(v)] = thick * kVoxel < radius ? 1 : 0;
-    thin_count += expect[size_t(v)];
-  }
+  for (uint8_t v : expect) thin_count += v;
   const ff::ThinVoxels thin = ff::metricsThinVoxels(t, radius);
   EXPECT_EQ(thin.count, thin_count);
   EXPECT_TRUE(thin.thin == expect) << "the thin voxels differ from the brute force";
@@ -272,6 +243,15 @@ TEST(FluidShares, ThinPartsFilledCountsTheThinVoxelsThatHoldFluid) {
   EXPECT_LT(m.filled_thin, 1.0);
   // Without thin voxels it reads 1 (every thin voxel holds fluid).
   EXPECT_DOUBLE_EQ(measure(t, ff::RigidFrame(), fl, nullptr, reached.data()).filled_thin, 1.0);
+}
+
+// The CPU backend finds the thin voxels again when the control radius is
+// edited while a target is active (the viewer's slider, a script's params
+// action, the Python module); the OpenCL backend's twin is in
+// test_opencl_phases.cpp.
+TEST(FluidShares, FilledThinFollowsAControlRadiusEditedAfterTheTarget) {
+  ff::CpuBackend cpu(2);
+  fftest::expectFilledThinFollowsTheRadius(cpu);
 }
 
 }  // namespace

@@ -52,6 +52,7 @@
 #include "opencl_backend.h"
 #include "sim/simulation.h"
 #include "test_scenes.h"
+#include "thin_target.h"
 
 namespace {
 
@@ -486,6 +487,15 @@ void checkEachPhase(ff::OpenClBackend::KernelVariant variant, bool bit_for_bit =
   EXPECT_TRUE(cpu.fluid().s.id == fo.id) << "sorted order differs after the metrics' grid";
   expectGridEqual("fluid grid after metrics", cpu.fluid().grid,
                   ocl.readGrid(ff::OpenClBackend::GridKind::Fluid), false);
+}
+
+// filled_thin follows the control radius edited after the target (bit 2 of
+// the target buffer and the third counter), as on the CPU backend
+// (test_fluid_shares.cpp).
+TEST(OpenClPhases, FilledThinFollowsAControlRadiusEditedAfterTheTarget) {
+  const auto ocl = openClBackend();
+  ASSERT_TRUE(ocl);
+  fftest::expectFilledThinFollowsTheRadius(*ocl);
 }
 
 TEST(OpenClPhases, EachPhaseMatchesTheCpuBackend) {

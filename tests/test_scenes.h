@@ -4,6 +4,7 @@
 #pragma once
 #include <string>
 
+#include "control/control_set.h"
 #include "core/vec3.h"
 #include "scene/scene.h"
 #include "target/target_shape.h"
@@ -53,6 +54,17 @@ inline std::string blockSceneJson(const std::string& name, double box, double x,
   return "{\"name\": \"" + name + "\", \"container\": {\"min\": [0, 0, 0], \"max\": [" + b + ", " + b + ", " +
          b + "]}, \"fluid\": [{\"origin\": [" + std::to_string(x) + ", 0.0, " + std::to_string(z) +
          "], \"dims\": [" + d + ", " + d + ", " + d + "]}]" + (extra.empty() ? "" : ", " + extra) + "}";
+}
+
+// Makes s's particles one cluster about its rest centre (rest_cx, rest_cy, rest_cz).
+inline void setOneCluster(ff::ControlSet& s) {
+  const uint32_t n = uint32_t(s.size());
+  ff::Clusters& cl = s.clusters;
+  cl = ff::Clusters();
+  cl.start = {0, n};
+  for (uint32_t p = 0; p < n; ++p) cl.members.push_back(p), cl.of.push_back(0), cl.of_start.push_back(p);
+  cl.of_start.push_back(n);
+  cl.rest_cx = {s.rest_cx}, cl.rest_cy = {s.rest_cy}, cl.rest_cz = {s.rest_cz};
 }
 
 }  // namespace fftest

@@ -162,6 +162,7 @@ void CpuBackend::setMetricsTarget(const TargetShape* target) {
   target_ = target;
   target_voxels_ = target ? targetVoxelCount(*target) : 0;
   thin_ = target ? metricsThinVoxels(*target, params_.control.radius) : ThinVoxels();
+  thin_radius_ = params_.control.radius;
 }
 
 StepMetrics CpuBackend::computeMetrics() {
@@ -199,6 +200,9 @@ StepMetrics CpuBackend::computeMetrics() {
     m.coverage = cov / double(sv.size());
     m.control_count = long(sv.size());
     if (target_) {
+      // The thin voxels follow the control radius: a params edit since the
+      // target was set (viewer, script, Python) finds them again.
+      if (thin_radius_ != params_.control.radius) setMetricsTarget(target_);
       bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
       const float h = params_.fluid.smoothing_radius;
       if (!fluid_.grid_current) {  // the next grid phase sorts by this one

@@ -77,7 +77,8 @@ class CpuBackend : public Backend {
   Controller controller_;
   const TargetShape* target_ = nullptr;
   long target_voxels_ = 0;
-  ThinVoxels thin_;  // the target's thin voxels (metric filled_thin)
+  ThinVoxels thin_;           // the target's thin voxels (metric filled_thin)
+  float thin_radius_ = 0.0f;  // the control radius thin_ was found for
   std::vector<uint8_t> controlled_by_id_;
   RigidFrame frame_;
   NonFiniteLog log_;

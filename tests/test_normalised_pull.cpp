@@ -246,22 +246,38 @@ TEST(NormalisedPull, TwiceTheSizeGivesTheSameIouCurveOnTheDefaultPreset) {
   EXPECT_LT(worst, 0.05);
 }
 
-// Issue 10's resolution goal with the derived control count (no
+// Issue 10's resolution test with the derived control count (no
 // control_count): 1728 and 3375 fluid particles (12^3 and 15^3, 1.95 times
-// as many) in the same volume give the same control set and iou curves
-// within 0.05 over every step of 1.5 s. The count follows the scene's fluid
+// as many) in the same volume give the same control set, the same iou at 2 s
+// within 0.05 (the issue's test), and the same iou curve within 0.05 over
+// every step after the first climb. The count follows the scene's fluid
 // volume (control.auto_count), not its particle count. The preset's 3226 is
 // the count of 12,000 fluid particles at the default voxel, too many for a
 // test, so it is set to the 12^3 block's, ceil(1728 / 1.55^3) = 465: 1728
 // particles keep one control particle per 1.55 fluid spacings, 3375 the
-// same set. With one per 1.55 fluid spacings at any count (the derivation
-// before auto_count) 3375 particles get twice the control particles (1024
-// against 504), a radius and a shape-matching step 0.8 times as large, and
-// their curve leaves the coarse one's by 0.27 at 0.2 s. (Blocks of 8^3 and
-// 10^3 read their first steps 0.07 apart with the same control set: a
-// 128-voxel iou of 512 particles jitters by more than the goal.)
+// same set.
+//
+// Why not every step: in the first climb (to about 0.15 s; the iou rises from
+// 0.55 to its first peak, about 0.88 at 0.12 s) the pull stretches the
+// tension-free liquid into particle layers 1.4-2 spacings apart, and the
+// iou's 0.5 rho0 voxel test flips voxels by where a voxel centre falls
+// between two layers, which depends on the spacing and not on the control
+// (docs/PERFORMANCE.md, "Why the first climb differs between resolutions";
+// the bulk's mean height and speed agree within 0.04 mm and 0.002 m/s).
+// Measured on 834d219 (2026-11-30; this test, and bench/tall_box_resolution.py's
+// scenes for the other counts), the largest difference over every step is
+// 0.049 at 0.08 s (12^3 / 15^3; 0.045 at 16^3, 0.085 at 24^3): the noise
+// floor of this 550-voxel target, not the mechanism. From 0.15 s on it is
+// 0.025 at 0.18 s (0.024 at 16^3, 0.035 at 24^3). The derivation before
+// auto_count (one control particle per 1.55 fluid spacings at any count:
+// 504 against 1024 control particles, a radius and a shape-matching step 0.8
+// times as large) leaves the coarse curve by 0.197 at 0.15 s in this test
+// (auto_count 0 here, a temporary change; 0.11 still at 0.33 s), so the
+// window keeps what the test guards. At 2 s both counts have filled the box
+// (iou 1.000) with either derivation: the issue's reading at 2 s alone would
+// not see the derivation.
 TEST(NormalisedPull, TwiceTheParticlesGiveTheSameIouCurveWithTheDerivedCount) {
-  const double t = 1.5;
+  const double t = 2.0, climb = 0.15;
   auto scene = [](int side) {
     ff::SceneDesc s = tallBoxScene(1, 0, side, "default");
     s.params.control.auto_count = int(std::ceil(1728.0 / (1.55 * 1.55 * 1.55)));
@@ -269,17 +285,21 @@ TEST(NormalisedPull, TwiceTheParticlesGiveTheSameIouCurveWithTheDerivedCount) {
   };
   long controls[2] = {0, 0};
   const auto coarse = iouCurve(scene(12), t, &controls[0]), fine = iouCurve(scene(15), t, &controls[1]);
-  double worst = 0.0, when = 0.0;
+  double worst = 0.0, when = 0.0, climb_worst = 0.0, climb_when = 0.0;
   for (const auto& [tc, iou] : coarse) {
     const double d = std::fabs(iouAt(fine, tc) - iou);
-    if (d > worst) worst = d, when = tc;
+    if (tc < climb && d > climb_worst) climb_worst = d, climb_when = tc;
+    if (tc >= climb && d > worst) worst = d, when = tc;
   }
+  const double at_end = std::fabs(fine.back().second - coarse.back().second);
   std::printf(
       "default preset, derived count, 12^3 / 15^3: %ld / %ld control particles, iou at %.1f s %.3f / %.3f; "
-      "largest difference %.3f at %.3f s\n",
-      controls[0], controls[1], t, coarse.back().second, fine.back().second, worst, when);
+      "largest difference from %.2f s on %.3f at %.3f s (in the first climb, not asserted: %.3f at %.3f s)\n",
+      controls[0], controls[1], t, coarse.back().second, fine.back().second, climb, worst, when, climb_worst,
+      climb_when);
   EXPECT_NEAR(double(controls[1]) / double(controls[0]), 1.0, 0.05);
-  EXPECT_GT(coarse.back().second, 0.6);
+  EXPECT_GT(coarse.back().second, 0.9);
+  EXPECT_LT(at_end, 0.05);
   EXPECT_LT(worst, 0.05);
 }
 

@@ -51,7 +51,7 @@ __kernel void dfsph_source(__global const float* rate, __global const float* rho
                                       vaz, q, P.eps, lo, hi, P.spacing, P.vol, P.h, P.inv_h, g1, &al);
       wpx[i] = g1[0], wpy[i] = g1[1], wpz[i] = g1[2], alpha_p[i] = al;
     } else {
-      bi = ff_dfsph_divergence_source(rate[i], bulk[i]);
+      bi = ff_dfsph_divergence_source(rate[i], (float)bulk[i]);
     }
     b[i] = bi;
     sum += (dfsph_sum_t)bi;

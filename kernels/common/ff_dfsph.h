@@ -255,9 +255,16 @@ FF_FN float ff_dfsph_factor_parts(const float* pos, const float* lo, const float
   return ff_dfsph_factor_at(wgrad, va, *q, eps);
 }
 
-/* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall. */
+/* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall,
+ * per lane (ff_dfsph_rate_of: u = (ux, uy, uz), wgrad = (gx, gy, gz)) and on
+ * arrays. */
+#define FF_DFSPH_RATE_DEF(T, name)                                    \
+  FF_FN T name(T rs, float vol, T ux, T uy, T uz, T gx, T gy, T gz) { \
+    return gx * ux + gy * uy + gz * uz - vol * rs;                    \
+  }
+FF_GENERIC(FF_DFSPH_RATE_DEF, ff_dfsph_rate_of)
 FF_FN float ff_dfsph_rate(float rs, float vol, const float* u, const float* wgrad) {
-  return wgrad[0] * u[0] + wgrad[1] * u[1] + wgrad[2] * u[2] - vol * rs;
+  return ff_dfsph_rate_of(rs, vol, u[0], u[1], u[2], wgrad[0], wgrad[1], wgrad[2]);
 }
 
 /* The velocity change of k from ks = sum_j g (k_i + k_j) r_ij and the wall. */
@@ -267,10 +274,15 @@ FF_FN void ff_dfsph_velocity_change(const float* ks, float ki, float vol, const 
 
 /* The compression the density solve removes: rho_hat predicted after dt with
  * the rate `rate` of the velocities that every other acceleration gave,
- * clamped at rest density (expansion is left alone). */
-FF_FN float ff_dfsph_density_source(float rho_hat, float rate, float dt) {
-  return FF_FMAX(rho_hat + dt * rate, 1.0f) - 1.0f;
-}
+ * clamped at rest density (expansion is left alone): max(s, 1) - 1 with
+ * s = rho_hat + dt rate, as a selection (0 where s < 1 or s is NaN, as
+ * fmax(s, 1) - 1). Per lane. */
+#define FF_DFSPH_DENSITY_SOURCE_DEF(T, name)     \
+  FF_FN T name(T rho_hat, T rate, float dt) {    \
+    const T s = rho_hat + dt * rate;             \
+    return s >= 1.0f ? s - 1.0f : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_DFSPH_DENSITY_SOURCE_DEF, ff_dfsph_density_source)
 
 /* What the linear prediction rho_hat + dt rate misses of the walls' share:
  * S(x + dt u) - S(x) - dt grad S(x).u, the exact share at the position the
@@ -283,16 +295,25 @@ FF_FN float ff_dfsph_density_source(float rho_hat, float rate, float dt) {
  * converged; its prediction was wrong). Exactly 0 where neither x nor
  * x + dt u is within H / 2 of a wall (ff_dfsph_wall_near). The solves
  * compute it with the S(x) and grad S(x) of their density phase
- * (ff_dfsph_wall_predicted, ff_dfsph_density_source_at).
- *
- * Whether x = pos or x + dt u (set into p1) is within H / 2 of a wall. */
+ * (ff_dfsph_wall_predicted, ff_dfsph_density_source_at). */
+
+/* Along one axis, per lane: 1 where x = p or x + dt u is within H / 2 of
+ * the wall at lo or at hi, else 0. */
+#define FF_DFSPH_WALL_NEAR_AXIS_DEF(T, name)                                                    \
+  FF_FN T name(T p, T u, float dt, float lo, float hi, float H) {                               \
+    const T p1 = p + dt * u;                                                                    \
+    const float r = 0.5f * H;                                                                   \
+    return ((p - lo < r) | (hi - p < r) | (p1 - lo < r) | (hi - p1 < r)) ? FF_ZERO_OF(T) + 1.0f \
+                                                                         : FF_ZERO_OF(T);       \
+  }
+FF_GENERIC(FF_DFSPH_WALL_NEAR_AXIS_DEF, ff_dfsph_wall_near_axis)
+/* Whether x = pos or x + dt u (set into p1) is within H / 2 of a wall. */
 FF_FN int ff_dfsph_wall_near(const float* pos, const float* u, float dt, const float* lo, const float* hi,
                              float H, float* p1) {
   int near = 0;
   for (int a = 0; a < 3; ++a) {
     p1[a] = pos[a] + dt * u[a];
-    const float d0 = FF_FMIN(pos[a] - lo[a], hi[a] - pos[a]), d1 = FF_FMIN(p1[a] - lo[a], hi[a] - p1[a]);
-    near |= (d0 < 0.5f * H) | (d1 < 0.5f * H);
+    near |= ff_dfsph_wall_near_axis(pos[a], u[a], dt, lo[a], hi[a], H) != 0.0f;
   }
   return near;
 }
@@ -345,11 +366,15 @@ FF_FN float ff_dfsph_density_source_at(uint i, const float* pos, const float* u,
 }
 
 /* The compression rate the divergence solve removes: only compressing flow,
- * and only where the support is filled (`bulk`): a particle at a free surface
- * has too few neighbours for a meaningful divergence. */
-FF_FN float ff_dfsph_divergence_source(float rate, int bulk) {
-  return bulk ? FF_FMAX(rate, 0.0f) : 0.0f;
-}
+ * and only where the support is filled (`bulk`, 1 or 0: ff_dfsph_bulk): a
+ * particle at a free surface has too few neighbours for a meaningful
+ * divergence. max(rate, 0) as a selection (0 where rate is NaN, as fmax).
+ * Per lane. */
+#define FF_DFSPH_DIVERGENCE_SOURCE_DEF(T, name)                      \
+  FF_FN T name(T rate, T bulk) {                                     \
+    return ((bulk != 0.0f) & (rate >= 0.0f)) ? rate : FF_ZERO_OF(T); \
+  }
+FF_GENERIC(FF_DFSPH_DIVERGENCE_SOURCE_DEF, ff_dfsph_divergence_source)
 
 /* The warm start of a solve: `warm` times the last substep's k where the
  * particle compresses (b > 0), else 0. */
@@ -360,9 +385,11 @@ FF_FN float ff_dfsph_warm_start(float k, float b, float warm) {
 /* One Jacobi increment of k (Bender & Koschier 2017, as SPlisHSPlasH): the k
  * that would remove the particle's remaining compression b >= 0 if its
  * neighbours stood still. Never negative, as b is clamped. */
-FF_FN float ff_dfsph_increment(float b, float alpha) {
-  return b * alpha;
-}
+#define FF_DFSPH_INCREMENT_DEF(T, name) \
+  FF_FN T name(T b, T alpha) {          \
+    return b * alpha;                   \
+  }
+FF_GENERIC(FF_DFSPH_INCREMENT_DEF, ff_dfsph_increment)
 
 /* ---- The per-particle steps of both solvers' outer loop: the OpenMP
  * solver (src/cpu/dfsph_solver.cpp) and the kernels (kernels/dfsph_*.cl). ---- */

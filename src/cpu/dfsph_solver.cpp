@@ -75,14 +75,32 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
 }
 FF_SIMD_DISPATCH(factorSums)
 
-// rs = sum_j g (u_i - u_j).r_ij of the particles b .. e-1 (group gi), over
-// the cached candidates: the grid walk's terms in its order.
+// What the sources of a solve read and write (DfsphSolver::sources).
+struct SourceArgs {
+  const float *ux, *uy, *uz;                // the velocities the sources measure
+  const float *wgx, *wgy, *wgz, *alpha;     // the density phase's grad S(x) and factor
+  const float *x, *y, *z, *rho;             // positions and densities
+  const float *wall, *vax, *vay, *vaz, *q;  // the density phase's S(x) and factor parts
+  const uint8_t* bulk;                      // support filled (the divergence solve)
+  float *b, *inc, *wpx, *wpy, *wpz;         // the sources, increments, walls' gradient at x + dt u
+  float lo[3], hi[3];
+  float vol, spacing, H, inv_h, eps, inv_rho0, dt;
+  bool density;
+};
+
+// The sources b and next increments of the particles b .. e-1 (group gi):
+// rs = sum_j g (u_i - u_j).r_ij over the cached candidates (the grid walk's
+// terms in its order), then the rate and source per lane (ff_dfsph_rate_of,
+// ff_dfsph_density_source or ff_dfsph_divergence_source,
+// ff_dfsph_increment). Near a wall (ff_dfsph_wall_near_axis) a lane's
+// density source is ff_dfsph_density_source_at, one particle at a time.
 template <class>
-FF_SIMD_BODY void rateSumsOf(const CpuFluid& f, const NeighbourCache& nc, size_t gi, const float* ux,
-                             const float* uy, const float* uz, uint32_t b, uint32_t e, float* out) {
+FF_SIMD_BODY void groupSourcesOf(const CpuFluid& f, const NeighbourCache& nc, size_t gi, uint32_t b,
+                                 uint32_t e, const SourceArgs& a) {
   const FluidState& s = f.s;
   const Group g = lanesOf(s, b, e);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
+  const float *ux = a.ux, *uy = a.uy, *uz = a.uz;
   const f8 uxi = simd::loadN(&ux[b], g.n, 0.0f), uyi = simd::loadN(&uy[b], g.n, 0.0f),
            uzi = simd::loadN(&uz[b], g.n, 0.0f);
   const uint32_t* js = nc.neighbours(gi);
@@ -96,9 +114,42 @@ FF_SIMD_BODY void rateSumsOf(const CpuFluid& f, const NeighbourCache& nc, size_t
     std::memcpy(&gf, gs + 8 * size_t(q), sizeof gf);
     rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
   }
-  simd::storeN(out, rs, g.n);
+  const int n = g.n;
+  const f8 gx = simd::loadN(&a.wgx[b], n, 0.0f), gy = simd::loadN(&a.wgy[b], n, 0.0f),
+           gz = simd::loadN(&a.wgz[b], n, 0.0f), alpha = simd::loadN(&a.alpha[b], n, 0.0f);
+  const f8 rate = ff_dfsph_rate_of(rs, a.vol, uxi, uyi, uzi, gx, gy, gz);
+  if (!a.density) {
+    f8 bulk;
+    for (int l = 0; l < 8; ++l) bulk[l] = l < n ? float(a.bulk[b + uint32_t(l)]) : 0.0f;
+    const f8 bs = ff_dfsph_divergence_source(rate, bulk);
+    simd::storeN(&a.b[b], bs, n);
+    simd::storeN(&a.inc[b], ff_dfsph_increment(bs, alpha), n);
+    return;
+  }
+  const f8 rho_hat = simd::loadN(&a.rho[b], n, 0.0f) * a.inv_rho0;
+  const f8 bs = ff_dfsph_density_source(rho_hat, rate, a.dt);
+  simd::storeN(&a.b[b], bs, n);
+  simd::storeN(&a.inc[b], ff_dfsph_increment(bs, alpha), n);
+  simd::storeN(&a.wpx[b], gx, n), simd::storeN(&a.wpy[b], gy, n), simd::storeN(&a.wpz[b], gz, n);
+  const f8 near = ff_dfsph_wall_near_axis(g.x, uxi, a.dt, a.lo[0], a.hi[0], a.H) +
+                  ff_dfsph_wall_near_axis(g.y, uyi, a.dt, a.lo[1], a.hi[1], a.H) +
+                  ff_dfsph_wall_near_axis(g.z, uzi, a.dt, a.lo[2], a.hi[2], a.H);
+  for (int l = 0; l < n; ++l) {
+    if (near[l] == 0.0f) continue;
+    // The density after dt, with the walls' share at x + dt u, and the
+    // walls' gradient and the factor there for this iteration's push.
+    const uint32_t i = b + uint32_t(l);
+    const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]}, wg[3] = {gx[l], gy[l], gz[l]};
+    float g1[3], al;
+    const float bi =
+        ff_dfsph_density_source_at(i, pos, u, rho_hat[l], rate[l], a.dt, wg, alpha[l], a.wall, a.vax, a.vay,
+                                   a.vaz, a.q, a.eps, a.lo, a.hi, a.spacing, a.vol, a.H, a.inv_h, g1, &al);
+    a.b[i] = bi;
+    a.inc[i] = ff_dfsph_increment(bi, al);  // the next iteration's, if there is one
+    a.wpx[i] = g1[0], a.wpy[i] = g1[1], a.wpz[i] = g1[2];
+  }
 }
-FF_SIMD_DISPATCH(rateSums)
+FF_SIMD_DISPATCH(groupSources)
 
 // ks = sum_j g (k_i + k_j) r_ij of the particles b .. e-1 (group gi; 3 x 8
 // lanes), over the cached candidates.
@@ -188,34 +239,20 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
 
 double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   const long n = long(f.size());
-  const float inv_rho0 = 1.0f / rho0_;
-  const float *vx = ux_.data(), *vy = uy_.data(), *vz = uz_.data();
   const FluidState& s = f.s;
-  const float H = vol_h_, inv_h = 1.0f / H, eps = ff_dfsph_eps(inv_h);
-  const float *wall = wall_.data(), *vax = vax_.data(), *vay = vay_.data(), *vaz = vaz_.data(),
-              *q = q_.data();
-  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
-    float rs[8];
-    rateSums(f, cache_, gi, vx, vy, vz, b, e, rs);
-    for (uint32_t i = b; i < e; ++i) {
-      const float u[3] = {vx[i], vy[i], vz[i]}, wg[3] = {wgx_[i], wgy_[i], wgz_[i]};
-      const float rate = ff_dfsph_rate(rs[i - b], vol_, u, wg);
-      float alpha = alpha_[i];
-      if (density) {
-        // The density after dt, with the walls' share at x + dt u, and the
-        // walls' gradient and the factor there for this iteration's push.
-        const float pos[3] = {s.x[i], s.y[i], s.z[i]};
-        float g1[3];
-        b_[i] =
-            ff_dfsph_density_source_at(i, pos, u, f.rho[i] * inv_rho0, rate, dt, wg, alpha, wall, vax, vay,
-                                       vaz, q, eps, lo_, hi_, vol_spacing_, vol_, H, inv_h, g1, &alpha);
-        wpx_[i] = g1[0], wpy_[i] = g1[1], wpz_[i] = g1[2];
-      } else {
-        b_[i] = ff_dfsph_divergence_source(rate, bulk_[i]);
-      }
-      inc_[i] = ff_dfsph_increment(b_[i], alpha);  // the next iteration's, if there is one
-    }
-  });
+  SourceArgs a;
+  a.ux = ux_.data(), a.uy = uy_.data(), a.uz = uz_.data();
+  a.wgx = wgx_.data(), a.wgy = wgy_.data(), a.wgz = wgz_.data(), a.alpha = alpha_.data();
+  a.x = s.x.data(), a.y = s.y.data(), a.z = s.z.data(), a.rho = f.rho.data();
+  a.wall = wall_.data(), a.vax = vax_.data(), a.vay = vay_.data(), a.vaz = vaz_.data(), a.q = q_.data();
+  a.bulk = bulk_.data();
+  a.b = b_.data(), a.inc = inc_.data(), a.wpx = wpx_.data(), a.wpy = wpy_.data(), a.wpz = wpz_.data();
+  for (int d = 0; d < 3; ++d) a.lo[d] = lo_[d], a.hi[d] = hi_[d];
+  a.vol = vol_, a.spacing = vol_spacing_, a.H = vol_h_, a.inv_h = 1.0f / vol_h_,
+  a.eps = ff_dfsph_eps(a.inv_h);
+  a.inv_rho0 = 1.0f / rho0_, a.dt = dt, a.density = density;
+  forEachGroupIndex(f.groups,
+                    [&](size_t gi, uint32_t b, uint32_t e) { groupSources(f, cache_, gi, b, e, a); });
   double err = 0.0;  // summed in the particles' order, as before the passes were merged
 #pragma omp parallel for schedule(static) reduction(+ : err)
   for (long i = 0; i < n; ++i) err += double(b_[size_t(i)]);

@@ -87,4 +87,20 @@ TEST(Cli, BadOptionIsRejected) {
   EXPECT_NE(r.out.find("Run with --help for more information."), std::string::npos) << r.out;
 }
 
+// A thread count OpenMP cannot create (100000 crashed its thread creation
+// with a segfault) is refused before anything runs, by every command that
+// takes --threads; a negative print interval is a usage error.
+TEST(Cli, ThreadCountsAreBounded) {
+  for (const char* cmd : {"run --backend cpu --steps 1", "render --frames 1 --out /proc/ff_no_frames",
+                          "bench --table1 --backend cpu", "view"}) {
+    Result r = run(std::string(cmd) + " --threads 100000");
+    EXPECT_EQ(r.code, 1) << cmd << "\n" << r.out;
+    EXPECT_NE(r.out.find("--threads: must be in [0, 1024] (got 100000"), std::string::npos) << cmd << "\n"
+                                                                                            << r.out;
+  }
+  Result r = run("run --backend cpu --steps 1 --print-every -3");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--print-every"), std::string::npos) << r.out;
+}
+
 }  // namespace

@@ -19,6 +19,7 @@
 #include "app/commands.h"
 #include "app/kernels_option.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 #ifndef FF_NO_OPENCL
 #include "host/cl_context.h"
 #endif
@@ -87,7 +88,7 @@ void validate(const BenchOptions& o) {
   if (o.steps < 1) throw Error("--steps: must be at least 1");
   if (o.sweep_steps < 1) throw Error("--sweep-steps: must be at least 1");
   if (o.warmup < 0 || o.sweep_warmup < 0) throw Error("--warmup/--sweep-warmup: must be >= 0");
-  if (o.threads < 0) throw Error("--threads: must be >= 0");
+  checkThreadCount(o.threads, "--threads");
   if (o.max_fluid < 1000) throw Error("--max-fluid: must be at least 1000");
   if (o.max_control < 100) throw Error("--max-control: must be at least 100");
   if (!(o.seconds > 0.0) || o.seconds > 600.0)

@@ -163,7 +163,7 @@ int renderScene(const RenderCmdOptions& o) {
   if (o.every_given && o.every < 1)
     throw Error("--every: must be at least 1 step (got " + std::to_string(o.every) + ")");
   if (!(o.start >= 0.0) || !std::isfinite(o.start)) throw Error("--start: must be 0 or more seconds");
-  if (o.threads < 0) throw Error("--threads: must be >= 0");
+  checkThreadCount(o.threads, "--threads");
   if (o.smoothing_given && (o.smoothing < 0 || o.smoothing > 64))
     throw Error("--smoothing: must be between 0 and 64 iterations (got " + std::to_string(o.smoothing) + ")");
   if (o.mode != "fluid" && o.mode != "particles")

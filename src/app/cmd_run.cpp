@@ -45,7 +45,7 @@ struct RunOptions {
 };
 
 int runScene(const RunOptions& o) {
-  if (o.threads < 0) throw Error("--threads: must be >= 0");
+  checkThreadCount(o.threads, "--threads");
   if (o.threads > 0) omp_set_num_threads(o.threads);
   if (!o.resume.empty() && !o.scene.empty())
     throw Error("--resume: give a scene or a checkpoint, not both (the checkpoint holds its scene)");
@@ -192,7 +192,9 @@ std::function<int()> addRunCommand(CLI::App& app) {
   addExportOptions(
       run, o->exports, o->formats, true,
       "Write frames into this folder (refused if it holds another run's frames, see --overwrite)");
-  run->add_option("--print-every", o->print_every, "Print metrics every K steps");
+  run->add_option("--print-every", o->print_every,
+                  "Print metrics every K steps (default 0: every half simulated second)")
+      ->check(CLI::NonNegativeNumber);
   run->add_option("--metrics-every", o->metrics_every,
                   "Compute the metrics (and the NaN check) every K steps (default 1; --metrics writes those "
                   "rows); other steps read nothing back from an OpenCL device")

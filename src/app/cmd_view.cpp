@@ -8,6 +8,7 @@
 #include "app/export_cli.h"
 #include "app/kernels_option.h"
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "viewer/viewer.h"
 
 namespace ff::app {
@@ -21,7 +22,7 @@ struct ViewCommandOptions {
 };
 
 int runView(const ViewCommandOptions& o) {
-  if (o.viewer.threads < 0) throw Error("--threads: must be >= 0");
+  checkThreadCount(o.viewer.threads, "--threads");
   if (o.viewer.threads > 0) omp_set_num_threads(o.viewer.threads);
   const SceneDesc scene = o.scene.empty() ? defaultScene() : loadScene(o.scene);
   viewer::ViewerOptions vo = o.viewer;

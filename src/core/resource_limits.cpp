@@ -140,4 +140,10 @@ long runSteps(double seconds, double dt, const std::string& what) {
   return std::max(1L, long(steps));
 }
 
+void checkThreadCount(long threads, const std::string& what) {
+  if (threads >= 0 && threads <= kMaxThreads) return;
+  throw Error(what + ": must be in [0, " + std::to_string(kMaxThreads) + "] (got " + std::to_string(threads) +
+              "; 0: all cores)");
+}
+
 }  // namespace ff

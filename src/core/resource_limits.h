@@ -24,6 +24,9 @@ constexpr double kBytesPerClusterMembership = 8.0;  // member and reverse lists,
 constexpr double kMaxClustersPerParticle = 4096.0;
 // The most steps one run may ask for (--seconds, --steps, "duration").
 constexpr double kMaxRunSteps = 1e8;
+// The most OpenMP threads a run may ask for (--threads, Python's threads=):
+// 100000 crashed OpenMP's thread creation (a segfault, 2026-11-30).
+constexpr int kMaxThreads = 1024;
 
 struct ResourceLimits {
   double memory_bytes = 0.0;
@@ -54,6 +57,10 @@ void checkFluidCount(double n, const std::string& where, const std::string& key)
 // with `what` (e.g. "scene.json: duration", "--seconds") unless `seconds` is
 // finite and > 0 and the run has at most kMaxRunSteps steps.
 long runSteps(double seconds, double dt, const std::string& what);
+// Throws ff::Error "WHAT: must be in [0, kMaxThreads] (got N)" for a thread
+// count outside that range (0: OpenMP's default).
+void checkThreadCount(long threads, const std::string& what);
+
 // runSteps, for its checks only.
 inline void checkRunLength(double seconds, double dt, const std::string& what) {
   (void)runSteps(seconds, dt, what);

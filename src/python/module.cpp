@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/resource_limits.h"
 #include "host/backend_factory.h"
 #include "io/export_options.h"
 #include "io/frame_exporter.h"
@@ -56,7 +57,7 @@ py::array_t<T> column(const std::vector<T>& v) {
 class PySimulation {
  public:
   PySimulation(const py::object& scene, const std::string& backend, int device, int threads) {
-    if (threads < 0) throw Error("threads: must be >= 0");
+    ff::checkThreadCount(threads, "threads");
     ff::SceneDesc desc;
     if (py::isinstance<py::dict>(scene))
       desc = ff::parseScene(toJson(scene), "<dict>", cwd());
@@ -82,9 +83,14 @@ class PySimulation {
     const int given = (steps > 0) + (seconds > 0.0) + (until > 0.0);
     if (given != 1) throw Error("run: give exactly one of steps, seconds or until (each > 0)");
     long n = steps;
-    if (seconds > 0.0) n = long(std::ceil(seconds / dt - 1e-9));
-    if (until > 0.0) n = std::max(0L, long(std::ceil(until / dt - 1e-9)) - sim_->stepCount());
+    if (seconds > 0.0) n = ff::runSteps(seconds, dt, "run: seconds");
+    if (until > 0.0) n = std::max(0L, ff::runSteps(until, dt, "run: until") - sim_->stepCount());
+    if (double(n) > ff::kMaxRunSteps)
+      throw Error("run: steps: " + std::to_string(n) + " steps are over the limit of 1e+08 steps");
     std::vector<std::vector<double>> cols(ff::kMetricColumns.size());
+    // The columns, and their NumPy copies at the end.
+    ff::checkMemory(2.0 * double(n) * double(cols.size()) * sizeof(double), "", "run",
+                    "the metrics of " + std::to_string(n) + " steps");
     for (auto& c : cols) c.reserve(size_t(n));
     for (long i = 0; i < n; ++i) {
       sim_->step();
@@ -221,6 +227,7 @@ PYBIND11_MODULE(flowform, m) {
   m.def(
       "resume",
       [](const std::string& path, const std::string& backend, int device, int threads) {
+        ff::checkThreadCount(threads, "threads");
         std::string note;
         return PySimulation(ff::loadCheckpoint(path, ff::makeBackend(backend, device, threads, &note)));
       },

@@ -126,6 +126,20 @@ class ModuleTest(unittest.TestCase):
         with self.assertRaises(flowform.Error):
             sim.run(steps=1, seconds=1.0)
 
+    def test_absurd_run_lengths_and_thread_counts_are_refused(self):
+        # Once a MemoryError (steps: the metrics arrays) and a segfault (threads).
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        with self.assertRaises(flowform.Error) as ctx:
+            sim.run(steps=10**12)
+        self.assertIn("run: steps", str(ctx.exception))
+        with self.assertRaises(flowform.Error) as ctx:
+            sim.run(seconds=1e300)
+        self.assertIn("run: seconds", str(ctx.exception))
+        self.assertEqual(sim.step_count, 0)  # refused before stepping
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(SCENE, backend="cpu", threads=100000)
+        self.assertIn("threads: must be in [0, 1024]", str(ctx.exception))
+
     def test_export_and_checkpoint(self):
         sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
         out = os.path.join(self.dir, "exp")

@@ -23,7 +23,13 @@ def parse_keys(text):
         t, _, target = item.partition(":")
         if not target:
             sys.exit("keyframes.py: --keys: '%s' is not TIME:TARGET" % item)
-        keys.append((float(t), target.strip()))
+        try:
+            time = float(t)
+        except ValueError:
+            time = float("nan")
+        if not time >= 0.0:
+            sys.exit("keyframes.py: --keys: '%s': the time must be a number of seconds >= 0" % item)
+        keys.append((time, target.strip()))
     return sorted(keys)
 
 
@@ -37,12 +43,16 @@ def main():
     ap.add_argument("--metrics", default="keyframes.csv", help="per-step metrics (CSV)")
     ap.add_argument("--export", default=None, help="folder for PLY frames (10 per simulated second)")
     a = ap.parse_args()
+    if not a.seconds > 0.0:
+        sys.exit("keyframes.py: --seconds: must be > 0 (got %g)" % a.seconds)
+    keys = parse_keys(a.keys)
+    open(a.metrics, "a").close()  # fail now on a file it cannot write, not after the run
     sim = flowform.Simulation(a.scene, backend=a.backend, threads=a.threads)
     exporter = flowform.Exporter(a.export, formats="ply", fps=10.0) if a.export else None
     if exporter:
         exporter.write(sim)
     parts = []
-    for t, target in parse_keys(a.keys):
+    for t, target in keys:
         if t > a.seconds:
             break
         if t > sim.time + 1e-9:
@@ -77,3 +87,5 @@ if __name__ == "__main__":
         main()
     except flowform.Error as e:
         sys.exit("keyframes.py: %s" % e)
+    except OSError as e:
+        sys.exit("keyframes.py: %s: %s" % (e.filename, e.strerror))

@@ -35,9 +35,20 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--out", default="wedge.csv", help="the metrics table (CSV)")
     a = ap.parse_args()
-    values = [float(v) for v in a.values.split(",") if v.strip()]
+    values = []
+    for v in a.values.split(","):
+        if v.strip():
+            try:
+                values.append(float(v))
+            except ValueError:
+                sys.exit("wedge.py: --values: '%s' is not a number" % v.strip())
     if not values:
         sys.exit("wedge.py: --values: give at least one number")
+    if a.steps < 0:
+        sys.exit("wedge.py: --steps: must be > 0 (got %d)" % a.steps)
+    if a.steps == 0 and not a.seconds > 0.0:
+        sys.exit("wedge.py: --seconds: must be > 0 (got %g)" % a.seconds)
+    open(a.out, "a").close()  # fail now on a file it cannot write, not after the runs
     rows = []
     for v in values:
         sim = flowform.Simulation(a.scene, backend=a.backend, threads=a.threads)
@@ -62,3 +73,5 @@ if __name__ == "__main__":
         main()
     except flowform.Error as e:
         sys.exit("wedge.py: %s" % e)
+    except OSError as e:
+        sys.exit("wedge.py: %s: %s" % (e.filename, e.strerror))

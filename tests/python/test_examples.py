@@ -20,6 +20,15 @@ def run(script, args, tmp, module_dir):
     return r.stdout
 
 
+def refused(script, args, tmp, module_dir, needle):
+    """A bad argument: exit status 1 and one line naming it, no traceback."""
+    env = dict(os.environ, PYTHONPATH=module_dir)
+    r = subprocess.run([sys.executable, script] + args, cwd=tmp, env=env, capture_output=True, text=True)
+    check(r.returncode == 1 and needle in r.stderr and "Traceback" not in r.stderr,
+          "%s %s: expected exit 1 naming '%s', got %d:\n%s%s" % (script, args, needle, r.returncode, r.stdout,
+                                                                   r.stderr))
+
+
 def check(cond, what):
     if not cond:
         sys.exit("FAILED: " + what)
@@ -38,6 +47,13 @@ def wedge(src, module_dir, tmp):
         check(abs(float(r[-1]) - 4 * 0.004) < 1e-6, "4 steps of 0.004 s: %s" % r)
     # Different attraction (the default preset pulls normalised: attraction_g), different run: the wedge really changed the parameter.
     check(rows[1][1:-1] != rows[2][1:-1], "both runs gave the same metrics")
+    # Bad arguments (a traceback, or a silent run of the default length, before).
+    script = os.path.join(src, "examples", "wedge.py")
+    refused(script, ["--values", "abc", "--steps", "1"], tmp, module_dir, "--values: 'abc' is not a number")
+    refused(script, ["--steps", "-2"], tmp, module_dir, "--steps: must be > 0")
+    refused(script, ["--seconds", "-1"], tmp, module_dir, "--seconds: must be > 0")
+    refused(script, ["--steps", "1", "--out", os.path.join(tmp, "no", "w.csv")], tmp, module_dir,
+            os.path.join(tmp, "no", "w.csv") + ": No such file or directory")
 
 
 def keyframes(src, module_dir, tmp):
@@ -52,6 +68,12 @@ def keyframes(src, module_dir, tmp):
     before, after = float(rows[4]["control_count"]), float(rows[5]["control_count"])
     check(before > 0 and after > 0 and before != after, "control count %g -> %g" % (before, after))
     check(os.path.exists(os.path.join(tmp, "frames", "fluid_00000.ply")), "exported frames")
+    # Bad arguments (a traceback, or a silent run of no steps, before).
+    script = os.path.join(src, "examples", "keyframes.py")
+    refused(script, ["--seconds", "-1"], tmp, module_dir, "--seconds: must be > 0")
+    refused(script, ["--keys", "soon:box"], tmp, module_dir, "--keys: 'soon:box': the time must be")
+    refused(script, ["--seconds", "0.004", "--metrics", os.path.join(tmp, "no", "k.csv")], tmp, module_dir,
+            os.path.join(tmp, "no", "k.csv") + ": No such file or directory")
 
 
 if __name__ == "__main__":

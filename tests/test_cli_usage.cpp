@@ -18,7 +18,8 @@ int countLines(const std::string& s) {
 TEST(CliUsage, BareProgramPrintsUsageAndExitsZero) {
   fftest::CliResult r = fftest::runFlowform("");
   EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("Usage:"), std::string::npos) << r.out;
+  // Named as the README writes it (it read "Usage: [OPTIONS]": no program name).
+  EXPECT_NE(r.out.find("Usage: flowform [OPTIONS] [SUBCOMMAND]"), std::string::npos) << r.out;
   for (const char* cmd : {"run", "devices", "view", "render", "bench"})
     EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd << "\n" << r.out;
   // It did not start a run.
@@ -41,6 +42,7 @@ TEST(CliUsage, BadOptionIsAUsageErrorWithExitCode2) {
 TEST(CliUsage, HelpExitsZero) {
   fftest::CliResult r = fftest::runFlowform("run --help");
   EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("Usage: flowform run [OPTIONS] [scene]"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--seconds"), std::string::npos) << r.out;
 }
 

@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines appear as they happen, also in logs
   CLI::App app{
       "flowform: SPH liquid that flows into a target shape (Yoshino & Tsuruno, shape-matching control)"};
+  app.name("flowform");  // the usage reads "flowform run ...", not the path it was started by
   app.require_subcommand(0, 1);
   std::string max_memory;
   app.add_option("--max-memory", max_memory,

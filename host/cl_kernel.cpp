@@ -43,7 +43,10 @@ void enqueueKernel(cl::CommandQueue& q, ClKernel& k, size_t global, size_t local
 
 bool clPoisonEnabled() {
   const char* v = std::getenv("FLOWFORM_CL_POISON");
-  return v && std::strcmp(v, "1") == 0;
+  if (!v || !*v || std::strcmp(v, "0") == 0) return false;
+  if (std::strcmp(v, "1") == 0) return true;
+  // Not silently off: "yes" or "true" read as off would hide what the check is for.
+  throw Error(std::string("FLOWFORM_CL_POISON: must be 1 (on) or 0 (off), got '") + v + "'");
 }
 
 Backend::HostSyncs& clHostSyncs() {

@@ -103,4 +103,13 @@ TEST(Cli, ThreadCountsAreBounded) {
   EXPECT_NE(r.out.find("--print-every"), std::string::npos) << r.out;
 }
 
+// FLOWFORM_CL_POISON=yes was read as off without a word; a value other
+// than 1 or 0 is refused, naming the variable.
+TEST(Cli, AnUnknownPoisonSettingIsRefused) {
+  const fftest::CliResult r = fftest::runFlowform("run --backend opencl --steps 1", "FLOWFORM_CL_POISON=yes");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("FLOWFORM_CL_POISON: must be 1 (on) or 0 (off), got 'yes'"), std::string::npos)
+      << r.out;
+}
+
 }  // namespace

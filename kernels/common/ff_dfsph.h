@@ -107,6 +107,12 @@ FF_FN float ff_dfsph_lattice_volume(float spacing, float H) {
   return 1.0f / sum;
 }
 
+/* Whether every layer of a wall at distance d is out of reach (the nearest,
+ * at max(d, -spacing / 2) + spacing / 2, at H or beyond). */
+FF_FN int ff_dfsph_wall_out_of_reach(float d, float spacing, float H) {
+  return FF_FMAX(d, -0.5f * spacing) + 0.5f * spacing >= H;
+}
+
 /* One wall at distance d as its layers of boundary particles (Akinci et al.
  * 2012), spaced as the rest lattice and spread evenly over their plane: the
  * layer at z_m = d + (m + 1/2) spacing adds (vol / spacing^2) A(z_m), where
@@ -120,10 +126,10 @@ FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, flo
                                  float* slope) {
   const float c = vol / (spacing * spacing);
   const float dm = FF_FMAX(d, -0.5f * spacing);
-  /* Out of reach (the nearest layer at H or beyond, so every layer is): no
-   * share and no slope, exactly what the loop below would give. Most
-   * particles are out of reach of most walls; this skips their layers. */
-  if (dm + 0.5f * spacing >= H) {
+  /* Out of reach: no share and no slope, exactly what the loop below would
+   * give. Most particles are out of reach of most walls; this skips their
+   * layers. */
+  if (ff_dfsph_wall_out_of_reach(d, spacing, H)) {
     *slope = 0.0f;
     return 0.0f;
   }
@@ -164,10 +170,22 @@ FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, flo
 FF_FN float ff_dfsph_wall(const float* pos, const float* lo, const float* hi, float spacing, float vol,
                           float H, float inv_h, float* grad) {
   const float k = ff_cubic_coef(H);
-  float side[6], slope[6];
+  float side[6], slope[6], d[6];
+  int out = 1;
   for (int a = 0; a < 3; ++a) {
-    const float dlo = 2.0f * (pos[a] - lo[a]) - 0.5f * spacing,
-                dhi = 2.0f * (hi[a] - pos[a]) - 0.5f * spacing;
+    d[2 * a] = 2.0f * (pos[a] - lo[a]) - 0.5f * spacing;
+    d[2 * a + 1] = 2.0f * (hi[a] - pos[a]) - 0.5f * spacing;
+    out &= ff_dfsph_wall_out_of_reach(d[2 * a], spacing, H) &
+           ff_dfsph_wall_out_of_reach(d[2 * a + 1], spacing, H);
+  }
+  /* Out of reach of every wall (most particles): S = 0 and grad S = 0, the
+   * bits the products below give then (1 - 1, and 0 + -0 for each axis). */
+  if (out) {
+    for (int a = 0; a < 3; ++a) grad[a] = 0.0f;
+    return 0.0f;
+  }
+  for (int a = 0; a < 3; ++a) {
+    const float dlo = d[2 * a], dhi = d[2 * a + 1];
     float s;
     side[2 * a] = 1.0f - ff_dfsph_wall_layers(dlo, spacing, vol, H, inv_h, k, &s);
     slope[2 * a] = 2.0f * s;

@@ -64,4 +64,49 @@ TEST(TargetChangeStanding, ALowShapeStandsOnItsRegionsFloor) {
   EXPECT_EQ(tall.lo, tall0.lo);
 }
 
+// The first target is placed stretched over its fluid as before, but the
+// standing anchor (ff_anchor.h) holds it where its rigid rest shape stands
+// on the container's floor, not at the middle of the fluid column it was
+// placed over: a box H tall standing on the floor has its centre H / 2 above
+// it (H from the voxel layers: the highest and lowest voxel centres plus one
+// voxel). Before, a lying letter was held 6-8 cm up with the fluid under it
+// out of reach (docs/RESULTS.md, "The unseen set"). A shape that would be
+// anchored within `reach` of the floor keeps its placed anchor.
+TEST(TargetChangeStanding, TheFirstTargetIsAnchoredStandingOnTheFloor) {
+  ff::TargetSpec flat = fftest::target(ff::TargetKind::Box, 800);
+  flat.box_size = ff::Vec3(1.0f, 0.25f, 1.0f);
+  const ff::TargetShape t = ff::buildTarget(flat, 8e-4, 0.01f);
+  const ff::Vec3 lo(0.05f, 0.0f, 0.05f), hi(0.2f, 0.3f, 0.2f), box_lo(0, 0, 0), box_hi(0.3f, 0.5f, 0.3f);
+  const float down[3] = {0.0f, -9.81f, 0.0f}, up[3] = {0.0f, 9.81f, 0.0f};
+  auto place = [&](const float g[3], float reach = 0.03f) {
+    ff::Standing s = ff::standingFor(g);
+    s.unstretched = false;
+    s.reach = reach;
+    return ff::placeControlParticles(t, lo, hi, ff::ShapeMatchParams(), box_lo, box_hi, ff::AdaptiveControl(),
+                                     s);
+  };
+  const ff::ControlSet d = place(down), u = place(up);
+  const ff::ControlSet before =
+      ff::placeControlParticles(t, lo, hi, ff::ShapeMatchParams(), box_lo, box_hi, ff::AdaptiveControl());
+  const auto [mn, mx] =
+      std::minmax_element(t.reference.begin(), t.reference.end(),
+                          [](const ff::Vec3& a, const ff::Vec3& b) { return a.y() < b.y(); });
+  const double height = double(mx->y()) - double(mn->y()) + double(t.grid.voxel);
+  std::printf(
+      "  box %.4g m tall over a region %.4g m tall: anchored at %.4g (down), %.4g (up), placed centre %.4g\n",
+      height, double(hi.y() - lo.y()), double(d.anchor_y), double(u.anchor_y), double(before.anchor_y));
+  ASSERT_LT(height, 0.5 * double(hi.y() - lo.y())) << "the box is not low for its region";
+  EXPECT_NEAR(d.anchor_y, box_lo.y() + 0.5 * height, 1e-5);
+  EXPECT_NEAR(u.anchor_y, box_hi.y() - 0.5 * height, 1e-5);
+  // Placed as before (stretched, the capped shift), only the anchor moves.
+  EXPECT_EQ(d.y, before.y);
+  EXPECT_EQ(d.anchor_x, before.anchor_x);
+  EXPECT_EQ(d.anchor_z, before.anchor_z);
+  EXPECT_NEAR(before.anchor_y, 0.5 * double(lo.y() + hi.y()), 1e-5) << "without gravity: the placed centre";
+  // Its placed centre is 0.15 - H / 2 = 0.128 m above where it stands: within
+  // a reach of 0.13 m it keeps it, beyond a reach of 0.12 m it does not.
+  EXPECT_EQ(place(down, 0.13f).anchor_y, before.anchor_y);
+  EXPECT_NEAR(place(down, 0.12f).anchor_y, box_lo.y() + 0.5 * height, 1e-5);
+}
+
 }  // namespace

@@ -89,7 +89,8 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     for (int d = 0; d < 3; ++d) {
       float u = text[d] > 0 ? (r[d] - tlo[d]) / text[d] : 0.5f;
       pos[d] = lo[d] + u * rext[d];
-      if (d == standing.axis && text[d] < rext[d])  // stands on the region's floor, unstretched
+      if (d == standing.axis && standing.unstretched &&
+          text[d] < rext[d])  // stands on the region's floor, unstretched
         pos[d] = standing.side < 0 ? lo[d] + (r[d] - tlo[d]) : hi[d] - (thi[d] - r[d]);
     }
     set.x[p] = pos.x(), set.y[p] = pos.y(), set.z[p] = pos.z();
@@ -121,7 +122,14 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
       shift[d] = box_hi[d] - ghi;
     // The anchor (ff_anchor.h) holds the set where the rigid shape fits,
     // however far that is from the region.
-    (d == 0 ? set.anchor_x : d == 1 ? set.anchor_y : set.anchor_z) = com[d] + shift[d];
+    // Along gravity, where it stands on the floor if it would be held out
+    // of reach above it (Standing).
+    float anchor = com[d] + shift[d];
+    if (d == standing.axis && ghi - glo < box_hi[d] - box_lo[d]) {
+      const float floor_shift = standing.side < 0 ? box_lo[d] - glo : box_hi[d] - ghi;
+      if (std::fabs(shift[d] - floor_shift) > standing.reach) anchor = com[d] + floor_shift;
+    }
+    (d == 0 ? set.anchor_x : d == 1 ? set.anchor_y : set.anchor_z) = anchor;
     // Never by more than half the region: the particles must start over
     // their fluid, or they would form the shape away from it. Except, at a
     // target change, along gravity: a shape taller than its region (the
@@ -131,7 +139,8 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
     // goals where its particles are. The first target keeps the cap: the
     // runner, squashed 3x into its fluid column, forms faster from there
     // (0.911 against 0.864 at 3 s).
-    const float cap = d == standing.axis ? std::numeric_limits<float>::infinity() : 0.5f * rext[d];
+    const float cap =
+        d == standing.axis && standing.unstretched ? std::numeric_limits<float>::infinity() : 0.5f * rext[d];
     shift[d] = std::fmax(-cap, std::fmin(cap, shift[d]));
   }
   for (size_t p = 0; p < n; ++p) set.x[p] += shift.x(), set.y[p] += shift.y(), set.z[p] += shift.z();

@@ -66,8 +66,22 @@ ClusterSize clusterSize(const ShapeMatchParams& sm, int extent, bool limbs);
 // middle the shape would otherwise form around, in the air above the fluid
 // that then falls out of its reach (Fig. 12's box, 7% of its fluid, on the
 // water preset). A shape at least as tall as the region is placed as before.
+//
+// Along that axis the anchor (ff_anchor.h) is where the rigid rest shape
+// stands on the container's floor wherever the shape would otherwise be
+// anchored more than `reach` (the control radius) above it: the standing
+// anchor keeps a set from rising above its anchor, so a shape lower than its
+// fluid column, placed stretched over it at the first target, was held at the
+// column's middle, in the air, with the fluid under it out of the control's
+// reach (lying letters and flat discs 6-8 cm up, 2.5-4 % of their fluid
+// stray; docs/RESULTS.md, "The unseen set"). A shape anchored within reach
+// of the floor keeps its anchor (the water teapot, 1.3 cm up, sinks to the
+// floor as it forms). `unstretched` false (the first target) keeps the
+// stretched placement and the capped shift and moves only the anchor.
 struct Standing {
   int axis = -1, side = -1;
+  bool unstretched = true;
+  float reach = 0.0f;
 };
 // Standing on the floor for `gravity`: its largest component's axis, on the
 // side it points to (none for zero gravity).

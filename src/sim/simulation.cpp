@@ -324,10 +324,14 @@ void Simulation::makeTarget(const TargetSpec& spec, bool reselect) {
   // Placed before any state changes: if placement throws, the simulation and
   // the backend keep the previous target, which the cache still holds.
   const Params params = withControlRadius(scene_.params, shape.grid.voxel);
+  // Anchored standing on the floor at every target; placed standing on the
+  // region's floor, unstretched, at a change only (placement.h, Standing).
+  Standing standing = standingFor(fp.gravity);
+  standing.unstretched = target_ != nullptr;
+  standing.reach = params.control.radius;
   ControlSet placed =
       placeControlParticles(shape, lo, hi, params.shape, scene_.container.min, scene_.container.max,
-                            adaptiveControl(params.control, shape.grid.voxel, fp.restSpacing()),
-                            target_ ? standingFor(fp.gravity) : Standing());
+                            adaptiveControl(params.control, shape.grid.voxel, fp.restSpacing()), standing);
   // The rest shape morphs from where the particles start into the new
   // target: at a change over `blend` fall times of the distance it moves, at
   // the first target (stretched over the picked fluid) over `blend_first`

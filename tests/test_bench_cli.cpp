@@ -394,6 +394,11 @@ TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
       {"bench --dambreak --seconds 0", "", "--seconds"},
       {"bench --dambreak --solver pcisph", "", "--solver"},
       {"bench --dambreak --geometry tiny", "", "--geometry"},
+      // No upper bound before: each ran for days (the soak at 2e9 changes, 1e9 timed steps).
+      {"bench --soak --soak-changes 2000000000", "", "--soak-changes: must be at most 100000"},
+      {"bench --table1 --steps 1000000000", "", "--steps: must be at most 100000"},
+      {"bench --stability --stability-seconds 1e9", "", "--stability-seconds: must be at most 600"},
+      {"bench --table1 --preset honey", "", "--preset: unknown parameter preset 'honey'"},
       {"bench --table1 --backend cpu --csv '" + (d / "no" / "such" / "dir.csv").string() + "'", "",
        "dir.csv"},
   };

@@ -88,6 +88,26 @@ void validate(const BenchOptions& o) {
   if (o.steps < 1) throw Error("--steps: must be at least 1");
   if (o.sweep_steps < 1) throw Error("--sweep-steps: must be at least 1");
   if (o.warmup < 0 || o.sweep_warmup < 0) throw Error("--warmup/--sweep-warmup: must be >= 0");
+  // Upper bounds: a count past them is a typo, and would run for days.
+  constexpr long kMostSteps = 100000;
+  for (auto [name, v] : {std::pair<const char*, long>{"--steps", o.steps},
+                         {"--warmup", o.warmup},
+                         {"--sweep-steps", o.sweep_steps},
+                         {"--sweep-warmup", o.sweep_warmup},
+                         {"--soak-changes", o.soak_options.changes},
+                         {"--soak-steps", o.soak_options.steps_between}})
+    if (v > kMostSteps)
+      throw Error(std::string(name) + ": must be at most " + std::to_string(kMostSteps) + " (got " +
+                  std::to_string(v) + ")");
+  if (o.stability_options.seconds > 600.0)
+    throw Error("--stability-seconds: must be at most 600 simulated seconds per run");
+  if (!o.preset.empty()) {
+    try {
+      presetParams(o.preset);
+    } catch (const Error& e) {
+      throw Error(std::string("--preset: ") + e.what());
+    }
+  }
   checkThreadCount(o.threads, "--threads");
   if (o.max_fluid < 1000) throw Error("--max-fluid: must be at least 1000");
   if (o.max_control < 100) throw Error("--max-control: must be at least 100");

@@ -355,7 +355,7 @@ TEST(BenchCli, DambreakQuickReportsEverySolverWithSaneValues) {
 // --geometry peer (the default): SPlisHSPlasH's DamBreakModel, an n^3 block
 // of spacing 1 / (n + 1) m (quick: 11^3, 1/12 m), on the water preset.
 TEST(BenchCli, DambreakPeerGeometryUsesThePeersParticleSize) {
-  auto r = runFlowform("bench --dambreak --quick --solver dfsph --seconds 0.008 --threads 2 --backend cpu");
+  auto r = runFlowform("bench --dambreak --quick --solver dfsph --seconds 0.029 --threads 2 --backend cpu");
   ASSERT_EQ(r.code, 0) << r.out;
   const auto rows = dambreakRows(r.out);
   if (rows.count("dfsph") == 0) GTEST_SKIP() << "this build has no dfsph: " << r.out;
@@ -365,7 +365,12 @@ TEST(BenchCli, DambreakPeerGeometryUsesThePeersParticleSize) {
   EXPECT_EQ(c[2], "peer");
   EXPECT_NEAR(std::stod(c[3]), 1.0 / 12.0, 1e-5);
   EXPECT_EQ(std::stol(c[6]), 11L * 11 * 11);
-  EXPECT_EQ(std::stoi(c[8]), 2);
+  // The water preset's frame step is time_step_fall sqrt(H / g) at the
+  // support H = 2 spacings = 1/6 m: 14.5 ms, so 0.029 s is 2 frame steps.
+  const double frame =
+      double(ff::presetParams("water").fluid.time_step_fall) * std::sqrt((2.0 / 12.0) / 9.81);
+  EXPECT_EQ(std::stol(c[8]), std::lround(0.029 / frame));
+  EXPECT_EQ(std::stol(c[8]), 2L);
   // A block on the rest lattice that has just started to fall: the solver
   // holds its compression within its tolerance (0.05 %; the free surface's
   // missing neighbours count in the mean density error, not here).

@@ -15,6 +15,7 @@
 #include "ff_dfsph.h"
 #include "metrics/force_pressure.h"
 #include "scene/scene.h"
+#include "scene/scene_json.h"
 #include "sim/simulation.h"
 #include "test_scenes.h"
 
@@ -544,4 +545,50 @@ TEST(Dfsph, FallTimeSubstepCapScalesWithTheScenesClock) {
   EXPECT_EQ(off.substepsFor(0.0, 0.0), 3);
   // The paper preset keeps its cap in seconds.
   EXPECT_EQ(ff::presetParams("paper").fluid.max_substep_fall, 0.0f);
+}
+
+// fluid.time_step_fall: the frame step (time_step) F sqrt(h / |g|) in whole
+// microseconds, against that closed form written out here. The water
+// preset's F = 0.11161 gives the paper's 4 ms frame exactly at the paper's
+// spacing; a scene c times as large steps sqrt(c) times as long (its own
+// clock), set when the run starts; a scene that gives time_step in seconds
+// turns it off; a frame step out of time_step's range names time_step_fall.
+TEST(Dfsph, FallTimeFrameStepScalesWithTheScenesClock) {
+  const ff::Params water = ff::presetParams("water");
+  const double F = water.fluid.time_step_fall, h = water.fluid.smoothing_radius, g = 9.81;
+  auto us = [](double t) { return std::round(t * 1e6) * 1e-6; };
+  EXPECT_EQ(water.fluid.time_step, float(us(F * std::sqrt(h / g))));
+  EXPECT_EQ(water.fluid.time_step, 0.004f);
+  for (const double c : {0.5, 2.0, 4.0}) {
+    ff::SceneDesc s = fftest::blockScene(ff::Vec3(float(0.2 * c), float(0.2 * c), float(0.2 * c)),
+                                         ff::Vec3(0.0f, 0.0f, 0.0f), 4, 4, 4);
+    s.params = water;
+    s.params.fluid.smoothing_radius = float(h * c);
+    s.params.fluid.particle_mass *= float(c * c * c);
+    ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(1));
+    const double frame = sim.scene().params.fluid.time_step;
+    EXPECT_EQ(frame, double(float(us(F * std::sqrt(h * c / g))))) << "scale " << c;
+    EXPECT_NEAR(frame / 0.004, std::sqrt(c), 2e-4) << "scale " << c;
+  }
+  // The paper preset keeps its step in seconds.
+  EXPECT_EQ(ff::presetParams("paper").fluid.time_step_fall, 0.0f);
+  EXPECT_EQ(ff::presetParams("paper").fluid.time_step, 0.004f);
+  // A time_step in the scene's params: seconds, the fall-time frame off.
+  const std::string blocks = R"("fluid": [{"origin": [0.05, 0.0, 0.05], "dims": [4, 4, 4]}])";
+  const ff::SceneDesc secs = ff::parseScene(
+      R"({"preset": "water", "params": {"fluid": {"time_step": 0.002}}, )" + blocks + "}", "t", ".");
+  EXPECT_EQ(secs.params.fluid.time_step, 0.002f);
+  EXPECT_EQ(secs.params.fluid.time_step_fall, 0.0f);
+  const ff::SceneDesc both = ff::parseScene(
+      R"({"preset": "water", "params": {"fluid": {"time_step": 0.002, "time_step_fall": 0.2}}, )" + blocks +
+          "}",
+      "t", ".");
+  EXPECT_EQ(both.params.fluid.time_step, float(us(0.2 * std::sqrt(h / g))));
+  try {
+    ff::parseScene(R"({"preset": "water", "params": {"fluid": {"time_step_fall": 5}}, )" + blocks + "}", "t",
+                   ".");
+    ADD_FAILURE() << "a 0.18 s frame step was accepted";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("params.fluid.time_step_fall"), std::string::npos) << e.what();
+  }
 }

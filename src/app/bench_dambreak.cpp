@@ -83,7 +83,7 @@ DambreakResult runDambreak(const DambreakCase& c, const std::string& solver, con
     return d;
   }
   sim->setProfiling(true);
-  const double frame = double(scene.params.fluid.time_step);
+  const double frame = double(sim->scene().params.fluid.time_step);
   const int steps = std::max(1, int(std::lround(sim_seconds / frame)));
   // One untimed frame step first: an OpenCL runtime compiles kernels at their
   // first launch (PoCL: about 2 s), which is setup, not simulation.

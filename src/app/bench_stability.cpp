@@ -75,6 +75,8 @@ double setScaled(const ParamInfo& p, Params& params, double base, double factor,
     *static_cast<int*>(f) = int(v);
   else
     *static_cast<float*>(f) = float(v);
+  // A frame step scaled in seconds: the preset's frame step in fall times is off.
+  if (f == static_cast<void*>(&params.fluid.time_step)) params.fluid.time_step_fall = 0.0f;
   return v;
 }
 
@@ -90,7 +92,7 @@ StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double second
   StabilityRun r;
   std::string note;
   Simulation sim(scene, makeBackend(b.kind, b.device, b.threads, &note));
-  const long steps = std::max(1L, std::lround(seconds / double(scene.params.fluid.time_step)));
+  const long steps = std::max(1L, std::lround(seconds / double(sim.scene().params.fluid.time_step)));
   for (long s = 0; s < steps; ++s) {
     try {
       sim.step();

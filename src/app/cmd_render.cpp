@@ -190,7 +190,7 @@ int renderScene(const RenderCmdOptions& o) {
 
   if (o.threads > 0) omp_set_num_threads(o.threads);
   SceneDesc scene = o.scene.empty() ? defaultScene() : loadScene(o.scene);
-  const double dt = scene.params.fluid.time_step;
+  const double dt = scene.params.fluid.frameStep();
   const long every = o.every_given ? o.every : std::max(1L, long(std::lround(1.0 / (o.fps * dt))));
   const long start_steps = o.start > 0.0 ? runSteps(o.start, dt, "--start") : 0;
 

@@ -84,6 +84,10 @@ const std::vector<ParamInfo>& paramTable() {
        "> 0: the longest substep is also this many fall times sqrt(h / |g|) of the smoothing radius; "
        "0: max_substep (s) alone",
        FF_FIELD(fluid.max_substep_fall)},
+      {"fluid", "time_step_fall", T::Real, 0.0, 10.0, false,
+       "> 0: the frame step (time_step) is this many fall times sqrt(h / |g|) of the smoothing radius, "
+       "in whole microseconds; 0: time_step in seconds",
+       FF_FIELD(fluid.time_step_fall)},
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
        FF_FIELD(control.radius)},

@@ -30,13 +30,25 @@ float FluidParams::restSpacing() const {
   return std::cbrt(particle_mass / rest_density);
 }
 
+double FluidParams::fallTime() const {
+  return ff::fallTime(double(smoothing_radius), gravity);
+}
+
 double FluidParams::substepCap() const {
   // max_substep_fall: a multiple of the fall time sqrt(h / g) of the smoothing
   // radius, so that a scene c times as large gets a cap sqrt(c) times as
   // long, the same on its own clock; max_substep (s) stays an upper bound.
   const double cap = double(max_substep);
   if (max_substep_fall <= 0.0f) return cap;
-  return std::min(cap, double(max_substep_fall) * fallTime(double(smoothing_radius), gravity));
+  return std::min(cap, double(max_substep_fall) * fallTime());
+}
+
+float FluidParams::frameStep() const {
+  if (!(time_step_fall > 0.0f)) return time_step;
+  // Whole microseconds: the water preset's 0.11161 fall times is the paper's
+  // 4 ms frame exactly at the paper's spacing, so that its scenes' steps
+  // land on their schedule's and the metrics' times as before.
+  return float(std::round(double(time_step_fall) * fallTime() * 1e6) * 1e-6);
 }
 
 int FluidParams::substepsFor(double max_pressure, double max_speed) const {
@@ -128,11 +140,16 @@ Params waterParams() {
   f.smoothing_radius = 2.0f * std::cbrt(volume);
   f.solver = PressureSolverKind::Dfsph;
   f.cfl = 0.2f;  // two fifths of a spacing per substep at the largest speed (docs/PRESETS.md)
-  // The longest substep is a sixteenth of the fall time sqrt(h / g) of the
-  // support, the same on every scene's own clock (docs/PRESETS.md,
-  // "Substep cap in fall times"): 2.2 ms at the paper's spacing, so 2
-  // substeps per 4 ms frame as the 2 ms cap before.
-  f.max_substep_fall = 0.0625f;
+  // The longest substep is 0.112 fall times sqrt(h / g) of the support, the
+  // same on every scene's own clock (docs/PRESETS.md, "Substep cap in fall
+  // times"): 4.01 ms at the paper's spacing, so one substep per 4 ms frame
+  // where the CFL conditions allow (0.0625, 2 substeps, before).
+  f.max_substep_fall = 0.112f;
+  // The frame step is in fall times too (docs/PRESETS.md, "Frame step in
+  // fall times"): 0.11161 sqrt(h / g) is 4.000 ms at the paper's spacing, so
+  // that a scene scaled by c steps on its own clock, sqrt(c) times as long.
+  f.time_step_fall = 0.11161f;
+  f.setFrameStep();
   f.viscosity = 0.1f;  // docs/PRESETS.md: damps the settling of the cubic lattice
   // The pull that does not depend on the control particles' density
   // (docs/CONTROL_UNITS.md, "Normalised pull"); the paper preset keeps eq. 4
@@ -237,13 +254,20 @@ void validateParams(const Params& p, const std::string& where) {
       }
     }
   }
+  // The frame step time_step_fall sets must be a valid time_step.
+  const float frame = p.fluid.frameStep();
+  if (p.fluid.time_step_fall > 0.0f && !(frame >= 1e-6f && frame <= 0.1f))
+    fail(where, "params.fluid.time_step_fall",
+         formatValue(p.fluid.time_step_fall) + " fall times sqrt(h / |g|) = " +
+             formatValue(p.fluid.fallTime()) + " s make a frame step of " + formatValue(frame) +
+             " s; it must be in [1e-06, 0.1] s (or set time_step_fall 0 to give time_step in seconds)");
   // Work per step: every fluid step runs time_step / shape_matching.time_step
   // shape-matching steps.
-  const double shape_steps = double(p.fluid.time_step) / double(p.shape.time_step);
+  const double shape_steps = double(frame) / double(p.shape.time_step);
   if (shape_steps > kMaxShapeStepsPerStep)
     fail(where, "params.shape_matching.time_step",
          "must be at least params.fluid.time_step / " + formatValue(kMaxShapeStepsPerStep) + " = " +
-             formatValue(double(p.fluid.time_step) / kMaxShapeStepsPerStep) + " s (got " +
+             formatValue(double(frame) / kMaxShapeStepsPerStep) + " s (got " +
              formatValue(p.shape.time_step) + " s, which would make " +
              formatValue(std::ceil(shape_steps - 1e-3)) + " shape-matching steps per fluid step)");
   const double clusters = p.shape.clustersPerParticle();

@@ -46,6 +46,12 @@ struct FluidParams {
   // sqrt(h / |g|) of the smoothing radius h, which scales with the scene as
   // its clock does (docs/PRESETS.md); 0 = max_substep (s) alone.
   float max_substep_fall = 0.0f;
+  // > 0: the frame step is time_step_fall times the fall time sqrt(h / |g|)
+  // of the smoothing radius h, rounded to whole microseconds, and sets
+  // time_step (setFrameStep), so that a scene c times as large steps sqrt(c)
+  // times as long, the same on its own clock (docs/PRESETS.md, "Frame step
+  // in fall times"); 0 = time_step in seconds.
+  float time_step_fall = 0.0f;
   // DFSPH: the substep also keeps dt <= pressure_cfl * h / sqrt(p_max / rho0),
   // p_max the last step's highest pressure: the pressure force's own
   // stiffness, which the solve leaves explicit (substepsFor, docs/PRESETS.md).
@@ -70,6 +76,12 @@ struct FluidParams {
   // The longest substep (s): max_substep, or max_substep_fall's fall-time
   // multiple where that is shorter.
   double substepCap() const;
+  // The fall time sqrt(h / |g|) of the smoothing radius (s; |g| 9.81 where g is 0).
+  double fallTime() const;
+  // The frame step (s): time_step, or time_step_fall's fall-time multiple.
+  float frameStep() const;
+  // time_step = frameStep(): called once the scene's params are final.
+  void setFrameStep() { time_step = frameStep(); }
   int substepsFor(double max_pressure, double max_speed) const;
 };
 

@@ -195,6 +195,11 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
       }
     }
   }
+  // A time_step given in seconds is the frame step: it turns off the preset's
+  // frame step in fall times (the water preset's time_step_fall), unless the
+  // same params set time_step_fall too.
+  if (j.contains("fluid") && j["fluid"].contains("time_step") && !j["fluid"].contains("time_step_fall"))
+    p.fluid.time_step_fall = 0.0f;
 }
 
 ContainerDesc readContainer(const Reader& r, const json& j) {
@@ -532,6 +537,7 @@ SceneDesc parseSceneImpl(const std::string& text, const std::string& source, con
   }
   if (root.contains("params")) readParams(r, root["params"], "params", scene.params);
   validateParams(scene.params, source);
+  scene.params.fluid.setFrameStep();
   if (root.contains("duration")) {
     scene.duration = r.number(root["duration"], "duration");
     r.positive(scene.duration, "duration");

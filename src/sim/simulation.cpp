@@ -81,6 +81,7 @@ void checkClusterMemory(const ShapeMatchParams& sm, size_t controls, const std::
 Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend)
     : scene_(std::move(scene)), backend_(std::move(backend)) {
   validateParams(scene_.params, scene_.source);
+  scene_.params.fluid.setFrameStep();
   double particles = 0.0;  // in double: dims of scenes made in code are not checked yet
   for (const FluidBlockDesc& b : scene_.fluid) particles += double(b.dims[0]) * b.dims[1] * b.dims[2];
   checkFluidCount(particles, scene_.source, "fluid");
@@ -91,6 +92,7 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend)
 Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateReader& r)
     : scene_(std::move(scene)), backend_(std::move(backend)) {
   validateParams(scene_.params, r.source());
+  scene_.params.fluid.setFrameStep();
   backend_->init(scene_.params, scene_.container, makeFluid(scene_));
   r.tag("SIMU");
   r.pod(step_), r.pod(time_), r.pod(metrics_);
@@ -381,6 +383,7 @@ void Simulation::setParams(const Params& params) {
   validateParams(params, "parameters");
   if (target_) checkClusterMemory(params.shape, target_->reference.size(), "parameters");
   scene_.params = withControlRadius(params, target_ ? target_->grid.voxel : 0.0f);
+  scene_.params.fluid.setFrameStep();
   backend_->setParams(scene_.params);
 }
 

@@ -224,7 +224,10 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
     changed |= floatParam("rest density", f.rest_density, 100.0f, 3000.0f, true, "kg/m^3");
     changed |= floatParam("gas constant k", f.gas_constant, 0.0f, 20.0f, true, "p = k (rho - rho0)");
     changed |= floatParam("viscosity mu", f.viscosity, 0.0f, 1.0f, true, "viscosity coefficient");
-    changed |= floatParam("time step s", f.time_step, 5e-4f, 0.02f, true, "one step of simulated time");
+    if (floatParam("time step s", f.time_step, 5e-4f, 0.02f, true, "one step of simulated time")) {
+      f.time_step_fall = 0.0f;  // a step in seconds: the frame step no longer follows h
+      changed = true;
+    }
     changed |= ImGui::SliderFloat3("gravity m/s^2", f.gravity, -20.0f, 20.0f, "%.2f");
     changed |= floatParam("cfl", f.cfl, 0.05f, 1.0f, false, "substeps: dt <= cfl h / (c + v_max)");
     changed |= intParam("max substeps", f.max_substeps, 1, 64, "upper bound on CFL substeps per step");

@@ -55,30 +55,36 @@ def disc():
     return revolve([(-half, 0.0), (-half, r), (half, r), (half, 0.0)], 96)
 
 
-def dumbbell():
-    ball, bar, gap = 1.0, 0.25, 2.0  # balls of radius 1, centres 2 + 2 apart, bar radius 0.25
-    c = ball + gap / 2.0
+def dumbbell_profile(r1, r2, bar, gap, n=24):
+    """Balls of radii r1 (at -x) and r2 joined by a bar of radius `bar`, the
+    balls' surfaces `gap` apart, about the x axis (n segments per half circle)."""
+    c1, c2 = -(r1 + gap / 2.0), r2 + gap / 2.0
     prof = []
-    n = 24
-    # left ball from its far pole to where it meets the bar
-    meet = math.sqrt(ball * ball - bar * bar)
+    # the left ball from its far pole to where it meets the bar, then the right
+    m1 = math.sqrt(r1 * r1 - bar * bar)
     for i in range(n + 1):
         a = math.pi * i / n
-        x, r = -c - ball * math.cos(a), ball * math.sin(a)
-        if x > -c + meet:
+        x, r = c1 - r1 * math.cos(a), r1 * math.sin(a)
+        if x > c1 + m1:
             break
         prof.append((x, r))
-    prof.append((-c + meet, bar))
-    prof.append((c - meet, bar))
+    prof.append((c1 + m1, bar))
+    m2 = math.sqrt(r2 * r2 - bar * bar)
+    prof.append((c2 - m2, bar))
     for i in range(n + 1):
         a = math.pi * i / n
-        x, r = c - ball * math.cos(a), ball * math.sin(a)
-        if x < c - meet:
+        x, r = c2 - r2 * math.cos(a), r2 * math.sin(a)
+        if x < c2 - m2:
             continue
         prof.append((x, r))
     prof[0] = (prof[0][0], 0.0)
     prof[-1] = (prof[-1][0], 0.0)
     return revolve(prof)
+
+
+def dumbbell():
+    # balls of radius 1, centres 2 + 2 apart, bar radius 0.25
+    return dumbbell_profile(1.0, 1.0, 0.25, 2.0)
 
 
 def letter_t():

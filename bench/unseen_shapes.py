@@ -36,7 +36,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from thin_shapes import blocks, revolve  # noqa: E402
+from thin_shapes import blocks, dumbbell_profile, revolve  # noqa: E402
 
 SPACING = (0.00025 / 1000.0) ** (1.0 / 3.0)  # the water preset's rest spacing
 FLUID = (20, 30, 20)
@@ -137,27 +137,7 @@ def disc(aspect):
 def dumbbell(r1, r2, bar, gap):
     """Balls of radii r1 (at -x) and r2 joined by a bar of radius `bar`, the
     balls' surfaces `gap` apart, about the x axis."""
-    c1, c2 = -(r1 + gap / 2.0), r2 + gap / 2.0
-    prof, n = [], 32
-    m1 = math.sqrt(r1 * r1 - bar * bar)
-    for i in range(n + 1):
-        a = math.pi * i / n
-        x, r = c1 - r1 * math.cos(a), r1 * math.sin(a)
-        if x > c1 + m1:
-            break
-        prof.append((x, r))
-    prof.append((c1 + m1, bar))
-    m2 = math.sqrt(r2 * r2 - bar * bar)
-    prof.append((c2 - m2, bar))
-    for i in range(n + 1):
-        a = math.pi * i / n
-        x, r = c2 - r2 * math.cos(a), r2 * math.sin(a)
-        if x < c2 - m2:
-            continue
-        prof.append((x, r))
-    prof[0] = (prof[0][0], 0.0)
-    prof[-1] = (prof[-1][0], 0.0)
-    return revolve(prof)
+    return dumbbell_profile(r1, r2, bar, gap, 32)
 
 
 def box_dumbbell(a, b, bar, gap):

@@ -181,10 +181,10 @@ def write_scene(path, name):
         f.write('  "target": {"shape": "mesh", "mesh": "%s.obj"}\n}\n' % name)
 
 
-def write(path, mesh):
+def write(path, mesh, script="bench/thin_shapes.py"):
     verts, faces = mesh
     with open(path, "w") as f:
-        f.write("# " + os.path.basename(path) + " (bench/thin_shapes.py)\n")
+        f.write("# " + os.path.basename(path) + " (" + script + ")\n")
         for v in verts:
             f.write("v %.6f %.6f %.6f\n" % v)
         for a, b, c in faces:

@@ -36,7 +36,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from thin_shapes import blocks, dumbbell_profile, revolve  # noqa: E402
+from thin_shapes import blocks, dumbbell_profile, revolve, write  # noqa: E402
 
 SPACING = (0.00025 / 1000.0) ** (1.0 / 3.0)  # the water preset's rest spacing
 FLUID = (20, 30, 20)
@@ -250,13 +250,7 @@ def rotate(v, deg):
 
 
 def write_mesh(path, mesh):
-    verts, faces = mesh
-    with open(path, "w") as f:
-        f.write("# " + os.path.basename(path) + " (bench/unseen_shapes.py)\n")
-        for v in verts:
-            f.write("v %.6f %.6f %.6f\n" % v)
-        for a, b, c in faces:
-            f.write("f %d %d %d\n" % (a + 1, b + 1, c + 1))
+    write(path, mesh, "bench/unseen_shapes.py")
 
 
 def write_scene(path, name, mesh, rot):

@@ -22,8 +22,8 @@ the fluid's volume. The proportions come from the rules below, not from runs.
 
   python3 bench/unseen_shapes.py DIR              write the meshes and scenes
   python3 bench/unseen_shapes.py --run DIR [NAME...]
-        also run each scene for 3 s (water, OpenMP, 2 threads, each run under
-        flock /tmp/ff-cpu.lock) into DIR/NAME.csv, then print the table
+        also run each scene for 3 s (water, OpenMP, 2 threads, one after
+        another) into DIR/NAME.csv, then print the table
   python3 bench/unseen_shapes.py --table DIR      print the table of DIR/*.csv
 
 The table is iou / filled / stray / filled_thin at 3 s, the most velocity
@@ -327,7 +327,7 @@ def main():
         exe = os.path.join(root, "build", "flowform")
         env = dict(os.environ, OMP_NUM_THREADS="2", POCL_MAX_PTHREAD_COUNT="2")
         for n in names:
-            rc = subprocess.run(["flock", "/tmp/ff-cpu.lock", exe, "run", os.path.join(out, n + ".json"),
+            rc = subprocess.run([exe, "run", os.path.join(out, n + ".json"),
                                  "--backend", "cpu", "--threads", "2", "--seconds", "3", "--metrics",
                                  os.path.join(out, n + ".csv")], env=env, stdout=subprocess.DEVNULL).returncode
             print(n, "done" if rc == 0 else "FAILED (exit %d)" % rc, file=sys.stderr)

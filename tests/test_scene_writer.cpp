@@ -207,6 +207,36 @@ TEST(SceneWriter, EveryParameterOfTheTableRoundTrips) {
   EXPECT_GT(n, 10);
 }
 
+// A step that its *_fall sets (the water preset's fluid and shape-matching
+// steps, derived at the run's start and at every target) is not written, so
+// that read back it still follows the scene: written in seconds it would turn
+// the *_fall off. A step given in seconds (the *_fall off) is written and read
+// back as it was.
+TEST(SceneWriter, AStepThatItsFallTimeSetsIsNotWrittenInSeconds) {
+  fftest::TempDir dir("scene_writer_steps");
+  const ff::Params water = ff::presetParams("water");
+  ASSERT_GT(water.fluid.time_step_fall, 0.0f);
+  ASSERT_GT(water.shape.time_step_fall, 0.0f);
+  ff::SceneDesc s = handMadeScene();
+  s.preset = "water";
+  s.params = water;
+  s.params.fluid.time_step = 0.0047f;  // as a derived step of another scale would be
+  s.params.shape.time_step = 0.0063f;
+  ff::writeSceneFile(s, dir.file("fall.json"));
+  const ff::SceneDesc r = ff::loadScene(dir.file("fall.json"));
+  EXPECT_EQ(r.params.fluid.time_step_fall, water.fluid.time_step_fall);
+  EXPECT_EQ(r.params.shape.time_step_fall, water.shape.time_step_fall);
+
+  s.params.fluid.setTimeStep(0.0047f);
+  s.params.shape.setTimeStep(0.0063f);
+  ff::writeSceneFile(s, dir.file("seconds.json"));
+  const ff::SceneDesc q = ff::loadScene(dir.file("seconds.json"));
+  EXPECT_EQ(q.params.fluid.time_step, 0.0047f);
+  EXPECT_EQ(q.params.fluid.time_step_fall, 0.0f);
+  EXPECT_EQ(q.params.shape.time_step, 0.0063f);
+  EXPECT_EQ(q.params.shape.time_step_fall, 0.0f);
+}
+
 TEST(SceneWriter, ASingleTargetAllFluidAndNoControlAreWrittenAsSuch) {
   fftest::TempDir dir("scene_writer_forms");
   ff::SceneDesc s = handMadeScene();

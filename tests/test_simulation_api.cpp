@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "cpu/backend_cpu.h"
+#include "scene/scene_json.h"
 #include "sim/simulation.h"
 #include "test_scenes.h"
 
@@ -15,6 +16,41 @@ namespace {
 
 ff::SceneDesc smallScene() {
   return fftest::blockScene(ff::Vec3(0.2f, 0.2f, 0.2f), ff::Vec3(0.06f, 0.0f, 0.06f), 12, 12, 12);
+}
+
+// A scene on the water preset (shape_matching.time_step_fall 0.0904, which
+// sets the shape-matching step at every target) that gives
+// shape_matching.time_step in seconds runs on that step, at its first target
+// and the next (a step given in seconds turns off its fall-time multiple);
+// given with time_step_fall, the fall time sets it: time_step_fall
+// sqrt(r / |g|), computed here.
+TEST(SimulationApi, AShapeMatchingStepInSecondsInASceneIsTheStepTaken) {
+  const std::string schedule =
+      R"("preset": "water", "schedule": [{"time": 0, "target": "sphere"}, {"time": 0.008, "target": "box"}])";
+  auto sceneWith = [&](const std::string& sm) {
+    return ff::parseScene(fftest::blockSceneJson("sm", 0.2, 0.06, 0.06, 8,
+                                                 schedule + R"(, "params": {"shape_matching": )" + sm + "}"),
+                          "sm.json", ".");
+  };
+  ASSERT_GT(ff::presetParams("water").shape.time_step_fall, 0.0f);
+  ff::Simulation sim(sceneWith(R"({"time_step": 0.003})"), std::make_unique<ff::CpuBackend>(1));
+  ASSERT_NE(sim.target(), nullptr);
+  EXPECT_EQ(sim.scene().params.shape.time_step, 0.003f);
+  EXPECT_EQ(sim.scene().params.shape.time_step_fall, 0.0f);
+  for (int i = 0; i < 3; ++i) sim.step();
+  EXPECT_EQ(sim.target()->label, "box");
+  EXPECT_EQ(sim.scene().params.shape.time_step, 0.003f);
+
+  ff::Simulation fall(sceneWith(R"({"time_step": 0.003, "time_step_fall": 0.05})"),
+                      std::make_unique<ff::CpuBackend>(1));
+  ASSERT_NE(fall.target(), nullptr);
+  const ff::Params& p = fall.scene().params;
+  const double g = std::sqrt(double(p.fluid.gravity[0]) * p.fluid.gravity[0] +
+                             double(p.fluid.gravity[1]) * p.fluid.gravity[1] +
+                             double(p.fluid.gravity[2]) * p.fluid.gravity[2]);
+  const double want = 0.05 * std::sqrt(double(p.control.radius) / g);
+  EXPECT_NEAR(p.shape.time_step, want, 1e-6 * want);
+  EXPECT_NE(p.shape.time_step, 0.003f);
 }
 
 TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {

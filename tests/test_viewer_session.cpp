@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "temp_dir.h"
 #include "test_scenes.h"
+#include "viewer/script.h"
 #include "viewer/target_catalog.h"
 #include "viewer/viewer_session.h"
 
@@ -224,13 +225,15 @@ TEST(ViewerSession, ResetWarnsWhenTheKeptRegionHoldsNoFluidAtTimeZero) {
   EXPECT_NO_THROW(s.step());
 }
 
-// The panel's "sm time step s" slider shows ShapeMatchParams::timeStepFor and
-// sets it with setTimeStepFor. Where shape_matching.time_step_fall > 0 (the
-// water preset), the session derives time_step from it at every target and
-// every edit, so a slider that wrote time_step was undone at once; it moves
-// the multiple instead and the session steps as asked. The fall time
-// sqrt(r / |g|) is computed here in double.
-TEST(ViewerSession, TheShapeStepSliderSetsTheFallTimeMultipleWhereThatRules) {
+// "A step given in seconds turns off its fall-time multiple", for the
+// shape-matching step (ShapeMatchParams::setTimeStep): the panel's "sm time
+// step s" slider and a script's params action giving
+// shape_matching.time_step are honoured where the scene ran on
+// shape_matching.time_step_fall > 0 (the water preset), which the session
+// otherwise sets again at every target and edit; the same params giving
+// time_step_fall too keep the fall-time step. The fall time sqrt(r / |g|) is
+// computed here in double.
+TEST(ViewerSession, AShapeStepInSecondsTurnsTheFallTimeMultipleOff) {
   ff::SceneDesc scene = tinyScene();
   scene.params.shape.time_step_fall = 0.09f;
   ViewerSession s(scene, cpu());
@@ -242,24 +245,50 @@ TEST(ViewerSession, TheShapeStepSliderSetsTheFallTimeMultipleWhereThatRules) {
   EXPECT_NEAR(s.params().shape.time_step, 0.09 * fall, 1e-6 * fall);
   EXPECT_NEAR(p.shape.timeStepFor(p.control.radius, g), 0.09 * fall, 1e-6 * fall);  // what the slider shows
 
-  p.shape.time_step = 0.004f;  // written directly: overridden
+  p.shape.time_step = 0.004f;  // written directly, not through the setter: overridden
   s.setParams(p);
   EXPECT_NEAR(s.params().shape.time_step, 0.09 * fall, 1e-6 * fall);
 
   p = s.params();
-  p.shape.setTimeStepFor(0.004f, p.control.radius, g);  // as the slider does
+  p.shape.setTimeStep(0.004f);  // as the slider does
   s.setParams(p);
-  EXPECT_NEAR(s.params().shape.time_step, 0.004, 1e-6 * 0.004);
-  EXPECT_NEAR(s.params().shape.time_step_fall, 0.004 / fall, 1e-6 * 0.004 / fall);
-  EXPECT_NO_THROW(s.step());
-  EXPECT_NEAR(s.params().shape.time_step, 0.004, 1e-6 * 0.004);  // and stays
-
-  p = s.params();
-  p.shape.time_step_fall = 0.0f;  // the paper: the slider's seconds themselves
-  p.shape.setTimeStepFor(0.003f, p.control.radius, g);
-  s.setParams(p);
-  EXPECT_EQ(s.params().shape.time_step, 0.003f);
+  EXPECT_EQ(s.params().shape.time_step, 0.004f);
   EXPECT_EQ(s.params().shape.time_step_fall, 0.0f);
+  s.step(), s.step(), s.step();  // past the schedule's box at 0.008 s: a new target
+  EXPECT_EQ(s.targetLabel(), "box");
+  EXPECT_EQ(s.params().shape.time_step, 0.004f);  // and stays
+
+  // A script's params action, as the viewer applies it (applyParamsAction, then setParams).
+  ViewerSession t(scene, cpu());
+  const ff::viewer::Script script = ff::viewer::parseScript(
+      R"({"actions": [{"at": 0, "params": {"shape_matching": {"time_step": 0.003}}},
+                      {"at": 0, "params": {"shape_matching": {"time_step": 0.003, "time_step_fall": 0.05}}},
+                      {"at": 0, "params": {"fluid": {"time_step": 0.002}}}]})",
+      "demo.json", ".");
+  ff::Params q = t.params();
+  ff::viewer::applyParamsAction(script.actions[0], q);
+  t.setParams(q);
+  EXPECT_EQ(t.params().shape.time_step, 0.003f);
+  EXPECT_EQ(t.params().shape.time_step_fall, 0.0f);
+  t.step(), t.step(), t.step();
+  EXPECT_EQ(t.targetLabel(), "box");
+  EXPECT_EQ(t.params().shape.time_step, 0.003f);
+  // Given with its time_step_fall, the fall time rules.
+  q = t.params();
+  ff::viewer::applyParamsAction(script.actions[1], q);
+  t.setParams(q);
+  EXPECT_NEAR(t.params().shape.time_step, 0.05 * fall, 1e-6 * fall);
+  // The fluid's frame step likewise (the tiny scene is on the paper preset's
+  // 4 ms; set its frame in fall times first).
+  q = t.params();
+  q.fluid.time_step_fall = 0.1f;
+  t.setParams(q);
+  ASSERT_NE(t.params().fluid.time_step, 0.002f);
+  q = t.params();
+  ff::viewer::applyParamsAction(script.actions[2], q);
+  t.setParams(q);
+  EXPECT_EQ(t.params().fluid.time_step, 0.002f);
+  EXPECT_EQ(t.params().fluid.time_step_fall, 0.0f);
 }
 
 }  // namespace

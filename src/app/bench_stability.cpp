@@ -70,13 +70,10 @@ double setScaled(const ParamInfo& p, Params& params, double base, double factor,
       p.min_open ? (p.type == ParamInfo::Type::Integer ? p.min + 1 : p.min * (1 + 1e-6)) : p.min;
   clipped = v < lo || v > p.max;
   v = std::clamp(v, lo, p.max);
-  void* f = p.field(params);
   if (p.type == ParamInfo::Type::Integer)
-    *static_cast<int*>(f) = int(v);
+    *static_cast<int*>(p.field(params)) = int(v);
   else
-    *static_cast<float*>(f) = float(v);
-  // A frame step scaled in seconds: the preset's frame step in fall times is off.
-  if (f == static_cast<void*>(&params.fluid.time_step)) params.fluid.time_step_fall = 0.0f;
+    setRealParam(p, params, float(v));  // a step scaled in seconds turns its *_fall off
   return v;
 }
 

@@ -54,8 +54,8 @@ const std::vector<ParamInfo>& paramTable() {
       {"fluid", "gas_constant", T::Real, 0.0, 1e6, false, "k in the equation of state p = k (rho - rho0)",
        FF_FIELD(fluid.gas_constant)},
       {"fluid", "viscosity", T::Real, 0.0, 1e4, false, "viscosity mu (Pa s)", FF_FIELD(fluid.viscosity)},
-      {"fluid", "time_step", T::Real, 1e-6, 0.1, false, "one step of simulated time (s)",
-       FF_FIELD(fluid.time_step)},
+      {"fluid", "time_step", T::Real, 1e-6, 0.1, false,
+       "one step of simulated time (s); giving it turns time_step_fall off", FF_FIELD(fluid.time_step)},
       {"fluid", "gravity", T::Vector, -1e3, 1e3, false, "gravity, each component (m/s^2)",
        FF_FIELD(fluid.gravity)},
       {"fluid", "solver", T::Solver, 0.0, 0.0, false, "the pressure solver by name: \"wcsph\" or \"dfsph\"",
@@ -132,7 +132,8 @@ const std::vector<ParamInfo>& paramTable() {
 
       {"shape_matching", "stiffness", T::Real, 0.0, 1.0, false, "alpha of eq. 7", FF_FIELD(shape.stiffness)},
       {"shape_matching", "time_step", T::Real, 1e-6, 1.0, false,
-       "the shape-matching clock (s); at most 1000 shape-matching steps per fluid step",
+       "the shape-matching clock (s); at most 1000 shape-matching steps per fluid step; giving it "
+       "turns time_step_fall off",
        FF_FIELD(shape.time_step)},
       {"shape_matching", "cluster_stride", T::Integer, 1, 64, false,
        "a cluster is centred on every N-th reference voxel", FF_FIELD(shape.cluster_stride)},
@@ -167,6 +168,23 @@ const std::vector<ParamInfo>& paramTable() {
 const std::vector<std::string>& paramGroups() {
   static const std::vector<std::string> groups = {"fluid", "control", "shape_matching"};
   return groups;
+}
+
+void setRealParam(const ParamInfo& info, Params& p, float v) {
+  void* f = info.field(p);
+  if (f == static_cast<void*>(&p.fluid.time_step))
+    p.fluid.setTimeStep(v);
+  else if (f == static_cast<void*>(&p.shape.time_step))
+    p.shape.setTimeStep(v);
+  else
+    *static_cast<float*>(f) = v;
+}
+
+bool stepSetByFallTime(const ParamInfo& info, const Params& p) {
+  Params& q = const_cast<Params&>(p);  // the table's accessors only read here
+  const void* f = info.field(q);
+  return (f == static_cast<const void*>(&p.fluid.time_step) && p.fluid.time_step_fall > 0.0f) ||
+         (f == static_cast<const void*>(&p.shape.time_step) && p.shape.time_step_fall > 0.0f);
 }
 
 }  // namespace ff

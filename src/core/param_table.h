@@ -43,6 +43,16 @@ const std::vector<ParamInfo>& paramTable();
 // The names of the groups ("fluid", "control", "shape_matching").
 const std::vector<std::string>& paramGroups();
 
+// Writes the Real parameter `info` of `p`. A step in seconds (fluid.time_step,
+// shape_matching.time_step) goes through its group's setTimeStep, which turns
+// the group's *_fall off: a step given in seconds is the step taken. The
+// scene/params overlay and bench --stability write through this. A *_fall
+// written after its step (the table lists it later) turns it on again.
+void setRealParam(const ParamInfo& info, Params& p, float v);
+// Whether `info` is a step in seconds that its group's *_fall > 0 sets
+// (and would override): the scene writer leaves it out.
+bool stepSetByFallTime(const ParamInfo& info, const Params& p);
+
 // The most shape-matching steps one fluid step may make
 // (params.fluid.time_step / params.shape_matching.time_step).
 constexpr double kMaxShapeStepsPerStep = 1000.0;

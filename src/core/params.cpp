@@ -95,11 +95,6 @@ float ShapeMatchParams::timeStepFor(float radius, const float g[3]) const {
   return time_step_fall > 0.0f ? time_step_fall * fallTime(radius, g) : time_step;
 }
 
-void ShapeMatchParams::setTimeStepFor(float seconds, float radius, const float g[3]) {
-  time_step = seconds;
-  if (time_step_fall > 0.0f) time_step_fall = seconds / fallTime(radius, g);
-}
-
 float ShapeMatchParams::firstBlendTime(float radius, const float g[3]) const {
   return blend_first > 0.0f ? blend_first * fallTime(2.0f * radius, g) : 0.0f;
 }

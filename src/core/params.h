@@ -82,6 +82,10 @@ struct FluidParams {
   float frameStep() const;
   // time_step = frameStep(): called once the scene's params are final.
   void setFrameStep() { time_step = frameStep(); }
+  // A frame step given in seconds: time_step = seconds, and time_step_fall
+  // off, which would override it. Every place that sets the step in seconds
+  // (a scene's or script's params, the viewer, bench --stability) calls this.
+  void setTimeStep(float seconds) { time_step = seconds, time_step_fall = 0.0f; }
   int substepsFor(double max_pressure, double max_speed) const;
 };
 
@@ -179,10 +183,11 @@ struct ShapeMatchParams {
   float time_step_fall = 0.0f;
   // The shape-matching step for control radius `radius` under gravity `g`.
   float timeStepFor(float radius, const float g[3]) const;
-  // Makes timeStepFor(radius, g) give `seconds`: time_step, or where
-  // time_step_fall > 0 (which would override it) the multiple of the fall
-  // time that gives it, to within float rounding (the viewer's slider).
-  void setTimeStepFor(float seconds, float radius, const float g[3]);
+  // A shape-matching step given in seconds: time_step = seconds, and
+  // time_step_fall off, which would override it at every target. Every place
+  // that sets the step in seconds (a scene's or script's params, the Python
+  // module's set_params, the viewer, bench --stability) calls this.
+  void setTimeStep(float seconds) { time_step = seconds, time_step_fall = 0.0f; }
   // The rest-shape blend of a run's first target (docs/CONTROL_UNITS.md,
   // "Rest-shape blend"): its rest shape morphs from where placement puts the
   // control particles (the target stretched over the picked fluid) into the

@@ -170,7 +170,7 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
       void* field = info.field(p);
       switch (info.type) {
         case ParamInfo::Type::Real:
-          *static_cast<float*>(field) = r.real(v, key);
+          setRealParam(info, p, r.real(v, key));  // a step in seconds turns its *_fall off
           break;
         case ParamInfo::Type::Integer:
           *static_cast<int*>(field) = r.integer(v, key);
@@ -195,11 +195,6 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
       }
     }
   }
-  // A time_step given in seconds is the frame step: it turns off the preset's
-  // frame step in fall times (the water preset's time_step_fall), unless the
-  // same params set time_step_fall too.
-  if (j.contains("fluid") && j["fluid"].contains("time_step") && !j["fluid"].contains("time_step_fall"))
-    p.fluid.time_step_fall = 0.0f;
 }
 
 ContainerDesc readContainer(const Reader& r, const json& j) {

@@ -84,8 +84,9 @@ json paramsOverlay(const Params& p, const Params& preset) {
         break;
       }
     }
-    // A frame step that time_step_fall sets is not written: it follows the scene.
-    if (info.field(a) == static_cast<void*>(&a.fluid.time_step) && a.fluid.time_step_fall > 0.0f) continue;
+    // A step that its *_fall sets is not written: it follows the scene (and
+    // given in seconds it would turn the *_fall off).
+    if (stepSetByFallTime(info, a)) continue;
     if (!value.is_null()) out[info.group][info.key] = value;
   }
   return out;

@@ -224,8 +224,9 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
     changed |= floatParam("rest density", f.rest_density, 100.0f, 3000.0f, true, "kg/m^3");
     changed |= floatParam("gas constant k", f.gas_constant, 0.0f, 20.0f, true, "p = k (rho - rho0)");
     changed |= floatParam("viscosity mu", f.viscosity, 0.0f, 1.0f, true, "viscosity coefficient");
-    if (floatParam("time step s", f.time_step, 5e-4f, 0.02f, true, "one step of simulated time")) {
-      f.time_step_fall = 0.0f;  // a step in seconds: the frame step no longer follows h
+    float frame = f.time_step;
+    if (floatParam("time step s", frame, 5e-4f, 0.02f, true, "one step of simulated time")) {
+      f.setTimeStep(frame);  // a step in seconds: the frame step no longer follows h
       changed = true;
     }
     changed |= ImGui::SliderFloat3("gravity m/s^2", f.gravity, -20.0f, 20.0f, "%.2f");
@@ -257,17 +258,17 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
     ShapeMatchParams& s = p.shape;
     changed |= floatParam("stiffness alpha", s.stiffness, 0.0f, 1.0f, false, "eq. 7");
     // The step the shape matching takes: with time_step_fall > 0 the scene's
-    // fall time sets it (time_step would be overridden at once), and
-    // dragging changes that multiple.
+    // fall time sets it; dragging gives it in seconds and turns that off.
     float step = s.timeStepFor(p.control.radius, p.fluid.gravity);
     char step_help[256] = "the shape-matching clock";
     if (s.time_step_fall > 0.0f)
-      std::snprintf(step_help, sizeof step_help,
-                    "the shape-matching clock, set by shape_matching.time_step_fall: %.4g fall times "
-                    "sqrt(r / g) of the control radius r = %.4g m; dragging changes that multiple",
-                    double(s.time_step_fall), double(p.control.radius));
+      std::snprintf(
+          step_help, sizeof step_help,
+          "the shape-matching clock, set by shape_matching.time_step_fall: %.4g fall times "
+          "sqrt(r / g) of the control radius r = %.4g m; dragging gives it in seconds (time_step_fall 0)",
+          double(s.time_step_fall), double(p.control.radius));
     if (floatParam("sm time step s", step, 1e-3f, 0.05f, true, step_help)) {
-      s.setTimeStepFor(step, p.control.radius, p.fluid.gravity);
+      s.setTimeStep(step);
       changed = true;
     }
     changed |= intParam("cluster stride", s.cluster_stride, 1, 8, "a cluster on every n-th reference voxel");

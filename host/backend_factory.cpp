@@ -29,9 +29,9 @@ std::string platformList() {
   }
 }
 
-std::string firstLine(const std::string& s) {
+std::string firstLine(const std::string& s, const BackendNames& names) {
   const size_t nl = s.find('\n');
-  return nl == std::string::npos ? s : s.substr(0, nl) + " ... (--backend opencl shows all of it)";
+  return nl == std::string::npos ? s : s.substr(0, nl) + " ... (" + names.opencl + " shows all of it)";
 }
 
 }  // namespace
@@ -65,23 +65,38 @@ std::string kernelChoice() {
   return k;
 }
 
-std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note) {
+BackendNames pythonBackendNames() {
+  return BackendNames{"backend", "device", "backend='opencl'", "backend='opencl' or 'auto'"};
+}
+
+std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note,
+                                     const BackendNames& names) {
   if (note) note->clear();
   simd::isa();  // a bad $FLOWFORM_SIMD is refused here (the CPU's loops and metrics read it)
   if (kind != "auto" && kind != "cpu" && kind != "opencl")
-    throw Error("--backend: unknown backend '" + kind + "' (known: auto, cpu, opencl)");
-  if (device < -1) throw Error("--device: must be >= 0 (got " + std::to_string(device) + ")");
+    throw Error(names.backend + ": unknown backend '" + kind + "' (known: auto, cpu, opencl)");
+  if (device < -1) throw Error(names.device + ": must be >= 0 (got " + std::to_string(device) + ")");
   if (kind == "cpu") {
-    if (device >= 0) throw Error("--device: only applies to the OpenCL backend (--backend opencl or auto)");
+    if (device >= 0)
+      throw Error(names.device + ": only applies to the OpenCL backend (" + names.opencl_or_auto + ")");
     return std::make_unique<CpuBackend>(threads);
   }
 #ifdef FF_NO_OPENCL
   if (kind == "opencl")
-    throw Error("--backend opencl: this flowform was built without OpenCL (FLOWFORM_OPENCL=OFF)");
+    throw Error(names.opencl + ": this flowform was built without OpenCL (FLOWFORM_OPENCL=OFF)");
   if (note) *note = "built without OpenCL; using the OpenMP CPU backend";
   return std::make_unique<CpuBackend>(threads);
 #else
-  if (kind == "opencl") return std::make_unique<OpenClBackend>(device);
+  if (kind == "opencl") {
+    // A device that is not there: refused here, naming the caller's option
+    // (ClContext names --device).
+    const size_t n = device >= 0 ? listClDevices().size() : 0;
+    if (device >= 0 && size_t(device) >= n)
+      throw Error(names.device + " " + std::to_string(device) + ": no such OpenCL device; " +
+                  (n == 0 ? std::string("there is none") : "the devices are 0.." + std::to_string(n - 1)) +
+                  " (see `flowform devices`)");
+    return std::make_unique<OpenClBackend>(device);
+  }
 
   // auto: an OpenCL GPU (or the device asked for), else the CPU backend.
   std::string why;
@@ -97,7 +112,7 @@ std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int th
     if (pick >= 0) return std::make_unique<OpenClBackend>(pick);
     why = "no OpenCL GPU found (platforms: " + platformList() + ")";
   } catch (const Error& e) {
-    why = "OpenCL failed to start (" + firstLine(e.what()) + ")";
+    why = "OpenCL failed to start (" + firstLine(e.what(), names) + ")";
   }
   if (note) *note = why + "; using the OpenMP CPU backend";
   return std::make_unique<CpuBackend>(threads);

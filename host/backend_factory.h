@@ -15,7 +15,17 @@ namespace ff {
 // OpenCL is missing or fails to start, and says why in one line via *note
 // (left empty when nothing needs saying). `opencl` throws ff::Error with that
 // explanation instead; so does an unknown kind or a --device that cannot be used.
-std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note);
+// The messages name the choices as `names` does: the CLI's options, or the
+// Python module's keywords (pythonBackendNames).
+struct BackendNames {
+  std::string backend = "--backend";        // the choice of backend
+  std::string device = "--device";          // the choice of device
+  std::string opencl = "--backend opencl";  // the OpenCL backend, as the user asks for it
+  std::string opencl_or_auto = "--backend opencl or auto";
+};
+BackendNames pythonBackendNames();  // backend=, device= of flowform.Simulation and flowform.resume
+std::unique_ptr<Backend> makeBackend(const std::string& kind, int device, int threads, std::string* note,
+                                     const BackendNames& names = BackendNames());
 
 // --kernels: how the OpenCL backend maps particles to work-items. "scalar":
 // one particle per work-item (for GPUs); "lanes": 8 per work-item as float8

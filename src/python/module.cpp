@@ -68,7 +68,7 @@ class PySimulation {
     else
       throw Error("scene: give a file name, a dict in scene syntax, or None for the default scene");
     std::string note;
-    auto b = ff::makeBackend(backend, device, threads, &note);
+    auto b = ff::makeBackend(backend, device, threads, &note, ff::pythonBackendNames());
     sim_ = std::make_unique<Simulation>(std::move(desc), std::move(b));
   }
   explicit PySimulation(std::unique_ptr<Simulation> sim) : sim_(std::move(sim)) {}
@@ -229,7 +229,8 @@ PYBIND11_MODULE(flowform, m) {
       [](const std::string& path, const std::string& backend, int device, int threads) {
         ff::checkThreadCount(threads, "threads");
         std::string note;
-        return PySimulation(ff::loadCheckpoint(path, ff::makeBackend(backend, device, threads, &note)));
+        return PySimulation(ff::loadCheckpoint(
+            path, ff::makeBackend(backend, device, threads, &note, ff::pythonBackendNames())));
       },
       py::arg("path"), py::arg("backend") = "cpu", py::arg("device") = -1, py::arg("threads") = 0,
       "A Simulation resumed from a checkpoint file.");

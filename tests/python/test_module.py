@@ -140,6 +140,31 @@ class ModuleTest(unittest.TestCase):
             flowform.Simulation(SCENE, backend="cpu", threads=100000)
         self.assertIn("threads: must be in [0, 1024]", str(ctx.exception))
 
+    def test_backend_and_device_errors_name_the_keywords(self):
+        # Python's keywords backend= and device=, not the CLI's --backend and --device.
+        cases = [
+            (dict(backend="cuda"), "backend: unknown backend 'cuda'"),
+            (dict(backend="cpu", device=0), "device: only applies to the OpenCL backend (backend='opencl' or"),
+            (dict(backend="opencl", device=-3), "device: must be >= 0 (got -3)"),
+        ]
+        ck = os.path.join(self.dir, "c.ffck")
+        flowform.Simulation(SCENE, backend="cpu", threads=2).save_checkpoint(ck)
+        for kwargs, want in cases:
+            for make in (lambda: flowform.Simulation(SCENE, threads=2, **kwargs),
+                         lambda: flowform.resume(ck, threads=2, **kwargs)):
+                with self.assertRaises(flowform.Error) as ctx:
+                    make()
+                self.assertIn(want, str(ctx.exception))
+                self.assertNotIn("--", str(ctx.exception))
+        # A device number past the last: named as device= too (or, without
+        # OpenCL, the backend as backend='opencl').
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(SCENE, backend="opencl", device=9999, threads=2)
+        msg = str(ctx.exception)
+        self.assertTrue(msg.startswith("device 9999: no such OpenCL device") or
+                        msg.startswith("backend='opencl': ") or msg.startswith("OpenCL"), msg)
+        self.assertNotIn("--device", msg)
+
     def test_export_and_checkpoint(self):
         sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
         out = os.path.join(self.dir, "exp")

@@ -404,6 +404,10 @@ TEST(BenchCli, BadInputIsRefusedWithTheOptionNamed) {
       {"bench --table1 --steps 1000000000", "", "--steps: must be at most 100000"},
       {"bench --stability --stability-seconds 1e9", "", "--stability-seconds: must be at most 600"},
       {"bench --table1 --preset honey", "", "--preset: unknown parameter preset 'honey'"},
+      // Timed every device (-2), or the CPU with the device ignored, before.
+      {"bench --table1 --steps 1 --warmup 0 --device -2", "", "--device: must be >= 0 (got -2)"},
+      {"bench --table1 --steps 1 --warmup 0 --backend cpu --device 0", "",
+       "--device: only applies to the OpenCL backend"},
       {"bench --table1 --backend cpu --csv '" + (d / "no" / "such" / "dir.csv").string() + "'", "",
        "dir.csv"},
   };

@@ -109,6 +109,11 @@ void validate(const BenchOptions& o) {
     }
   }
   checkThreadCount(o.threads, "--threads");
+  // As `run` refuses them (a negative device timed every device, one with
+  // --backend cpu was ignored).
+  if (o.device < -1) throw Error("--device: must be >= 0 (got " + std::to_string(o.device) + ")");
+  if (o.device >= 0 && o.backend == "cpu")
+    throw Error("--device: only applies to the OpenCL backend (--backend opencl or all)");
   if (o.max_fluid < 1000) throw Error("--max-fluid: must be at least 1000");
   if (o.max_control < 100) throw Error("--max-control: must be at least 100");
   if (!(o.seconds > 0.0) || o.seconds > 600.0)

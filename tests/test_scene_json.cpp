@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/error.h"
+#include "core/param_table.h"
 #include "core/params.h"
 #include "scene/scene.h"
 #include "temp_dir.h"
@@ -489,4 +491,21 @@ TEST(Params, ValidateRejectsNanAndRanges) {
   p = ff::Params{};
   p.control.radius = -1.0f;
   EXPECT_NE(message(p).find("params.control.radius"), std::string::npos) << message(p);
+}
+
+// scenes/README.md documents every key of the parameter table: each key a
+// scene's "params" accepts is named there as `KEY` or `GROUP.KEY`, or in its
+// example scene as "KEY".
+TEST(Params, EveryTableKeyIsDocumentedInTheSceneFormat) {
+  std::ifstream in(std::string(FF_SOURCE_DIR) + "/scenes/README.md");
+  ASSERT_TRUE(in) << "scenes/README.md";
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const ff::ParamInfo& info : ff::paramTable()) {
+    const std::string key = std::string("`") + info.key + "`";
+    const std::string full = std::string("`") + info.group + "." + info.key + "`";
+    const std::string quoted = std::string("\"") + info.key + "\":";
+    EXPECT_TRUE(doc.find(key) != std::string::npos || doc.find(full) != std::string::npos ||
+                doc.find(quoted) != std::string::npos)
+        << info.name();
+  }
 }

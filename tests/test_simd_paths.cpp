@@ -1,8 +1,7 @@
 // The instruction-set instances of the OpenMP backend's hot loops
 // (src/parallel/simd8.h) against each other: a CPU without AVX2 runs the
-// portable instances, one without AVX-512 runs control_scale's 8-lane walk
-// alone (no scaleSumsPair), so each cap must give the same run as the widest
-// instance, bit for bit: the fluid (positions, velocities), the control
+// portable instances, one without AVX-512 the AVX2 ones alone, so each cap
+// must give the same run as the widest instance, bit for bit: the fluid (positions, velocities), the control
 // particles and their fields, and the whole saved state. The oracle is the
 // other instance: they are compiled separately for different instruction
 // sets from one body, and a lane test, a lane mask or a sum that one of them

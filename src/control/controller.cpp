@@ -1,7 +1,10 @@
 #include "control/controller.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "control/control_args.h"
 #include "control/shape_match_args.h"
@@ -17,12 +20,13 @@
 namespace ff {
 
 void Controller::setBounds(const float lo[3], const float hi[3]) {
-  bounded_ = true;
+  bounded_ = true, pairs_ready_ = false;
   for (int d = 0; d < 3; ++d) lo_[d] = lo[d], hi_[d] = hi[d];
 }
 
 void Controller::reset(ControlSet set) {
   set_ = std::move(set);
+  pairs_ready_ = false;
   anchorAtCentre(set_);
   const size_t n = set_.size();
   if (set_.radius_scale.size() != n) set_.radius_scale.assign(n, 1.0f);
@@ -46,147 +50,105 @@ std::vector<uint32_t>& threadSpans() {
   return spans;
 }
 
-std::vector<uint32_t>& threadHits() {
-  static thread_local std::vector<uint32_t> hits;
-  return hits;
-}
-
-struct ScaleSums {
-  float w, ux, uy, uz;
-};
-
-// The lanes of control scale sums for P control particles at once, particle
-// j in lanes 8j .. 8j+7: 8 lanes (f8) for one, 16 (an AVX-512 vector) for two.
-template <int P>
-struct ScaleLanes;
-template <>
-struct ScaleLanes<1> {
-  typedef f8 F;
-  typedef i8 I;
-  // spread: a fluid block or its lane mask, in every particle's lanes;
-  // each: coordinate d of particle j, in j's lanes.
-  [[gnu::always_inline]] static F spread(f8 v) { return v; }
-  [[gnu::always_inline]] static I spread(i8 v) { return v; }
-  [[gnu::always_inline]] static F each(const float (&p)[1][3], int d) { return simd::splat(p[0][d]); }
-};
-#if FF_SIMD_AVX2
-template <>
-struct ScaleLanes<2> {
-  typedef float F __attribute__((vector_size(64)));
-  typedef int I __attribute__((vector_size(64)));
-  [[gnu::always_inline]] static F spread(f8 v) {
-    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
-  }
-  [[gnu::always_inline]] static I spread(i8 v) {
-    return __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
-  }
-  [[gnu::always_inline]] static F each(const float (&p)[2][3], int d) {
-    const float a = p[0][d], b = p[1][d];
-    return F{a, a, a, a, a, a, a, a, b, b, b, b, b, b, b, b};
-  }
-};
-#endif
-
-// Control scale sums around the control particles at p[0 .. P-1], all of
-// radius r: the fluid in the grid ranges within reach of any of them (rows of
-// their bounding box), 8 consecutive sorted positions at a time, loaded into
-// every particle's 8 lanes, position k in lane k mod 8 of each
-// (kernels/control_scale.cl does the same with float8). Each particle's lanes
-// add every fluid particle within its reach in ascending sorted order, and the
-// others add exactly 0, so its sums do not depend on P, bit for bit: P = 2
-// (scaleSumsPair, AVX-512) is worth it where two particles are close
-// (neighbours in the set): one walk over nearly the same blocks serves both.
-template <class, int P>
-FF_SIMD_BODY void scaleSumsOf(const UniformGrid& grid, size_t n, const float* x, const float* y,
-                              const float* z, const float* vx, const float* vy, const float* vz,
-                              const float (&p)[P][3], float r, float coef, ScaleSums (&out)[P]) {
-  typedef ScaleLanes<P> L;
-  typedef typename L::F F;
-  typedef typename L::I I;
-  std::vector<uint32_t>& spans = threadSpans();
-  float lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = hi[d] = p[0][d];
-    for (int j = 1; j < P; ++j) lo[d] = std::min(lo[d], p[j][d]), hi[d] = std::max(hi[d], p[j][d]);
-  }
-  grid.rangesNear(lo, hi, r, spans);
-  const float r2 = r * r;
-  const F px = L::each(p, 0), py = L::each(p, 1), pz = L::each(p, 2);
-  const i8 iota = {0, 1, 2, 3, 4, 5, 6, 7};
-  const F zero = {};
-  F sum = zero, ux = zero, uy = zero, uz = zero;
-  for (size_t s = 0; s < spans.size(); s += 2) {
-    const uint32_t b = spans[s], e = spans[s + 1];
-    for (uint32_t k = b & ~7u; k < e; k += 8) {
-      const int m = int(std::min<size_t>(8, n - k));
-      const F fx = L::spread(simd::loadN(x + k, m, kFar)), fy = L::spread(simd::loadN(y + k, m, kFar)),
-              fz = L::spread(simd::loadN(z + k, m, kFar));
-      const F dx = px - fx, dy = py - fy, dz = pz - fz;
-      // The lane test at 8 lanes, then spread: a default-target body's
-      // 16-lane int comparison is scalarised even inlined into AVX-512 code.
-      const i8 kk = iota + int(k);
-      const I in = L::spread((kk >= int(b)) & (kk < int(e)));
-      const F w = simd::keep(in, ff_poly6(dx * dx + dy * dy + dz * dz, r2, coef));
-      sum += w;
-      ux += w * L::spread(simd::loadN(vx + k, m, 0.0f)), uy += w * L::spread(simd::loadN(vy + k, m, 0.0f));
-      uz += w * L::spread(simd::loadN(vz + k, m, 0.0f));
-    }
-  }
-  for (int j = 0; j < P; ++j) {
-    auto total = [j](F v) {
-      const int o = 8 * j;
-      return ff_lane_sum8(v[o], v[o + 1], v[o + 2], v[o + 3], v[o + 4], v[o + 5], v[o + 6], v[o + 7]);
-    };
-    out[j] = {total(sum), total(ux), total(uy), total(uz)};
-  }
-}
-FF_SIMD_DISPATCH(scaleSums)
-
-#if FF_SIMD_AVX2
-[[gnu::target("avx512f")]] void scaleSumsPair(const UniformGrid& grid, size_t n, const float* x,
-                                              const float* y, const float* z, const float* vx,
-                                              const float* vy, const float* vz, const float (&p)[2][3],
-                                              float r, float coef, ScaleSums (&out)[2]) {
-  scaleSumsOf<simd::PortableLanes>(grid, n, x, y, z, vx, vy, vz, p, r, coef, out);
-}
-#endif
-
-// Control force sums of the fluid particles b .. e-1 (sorted positions, at
-// most 8, one row of the fluid grid) as lanes, the control particles in the
-// control grid's ranges within reach broadcast one at a time, in ascending
-// order: each lane sums as kernels/control_forces.cl does for its particle.
-// First the candidates that some lane reaches (branch-free: Lanes::any, see
-// simd8.h), then the sums over those alone: a candidate that no lane reaches
-// adds exactly 0 to every lane (as the kernel's any() skips it).
-// out: 7 x 8 floats (attraction x, y, z, sum of W, sum of W v x, y, z).
-struct ForceSumsArgs {
-  const float *x, *y, *z;  // the sorted fluid
-  const UniformGrid* cp_grid;
-  const float *sx, *sy, *sz, *ss, *svx, *svy, *svz;  // control particles in cp_grid order
-  float r, r2, coef;  // every control particle's reach (the control radius), P.r2 and P.coef
-};
-template <class Lanes>
-FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, float* out) {
+// The control particles (sorted positions in cp_grid, at sx, sy, sz) that
+// some fluid particle of the group b .. e-1 (sorted positions of x, y, z; at
+// most 8, one row of the fluid grid) reaches within rc, in ascending order,
+// into hit[0 ..) (room for them: pairCandidateRoom); returns how many. The
+// control grid's ranges within reach of the group's box, each candidate tested
+// in the group's 8 lanes, branch-free (Lanes::any, see simd8.h).
+size_t pairCandidateRoom(const UniformGrid& cp_grid, const float* x, const float* y, const float* z,
+                         uint32_t b, uint32_t e, float rc, std::vector<uint32_t>& spans) {
   const int n = int(e - b);
-  const f8 xe = simd::loadN(A.x + b, n, kFar), ye = simd::loadN(A.y + b, n, kFar),
-           ze = simd::loadN(A.z + b, n, kFar);
+  const f8 xe = simd::loadN(x + b, n, kFar), ye = simd::loadN(y + b, n, kFar),
+           ze = simd::loadN(z + b, n, kFar);
   const float lo[3] = {simd::hmin(xe, n), simd::hmin(ye, n), simd::hmin(ze, n)};
   const float hi[3] = {simd::hmax(xe, n), simd::hmax(ye, n), simd::hmax(ze, n)};
-  std::vector<uint32_t>& spans = threadSpans();
-  A.cp_grid->rangesNear(lo, hi, A.r, spans);
-  const float *sx = A.sx, *sy = A.sy, *sz = A.sz, r2 = A.r2;
-  std::vector<uint32_t>& hits = threadHits();
+  cp_grid.rangesNear(lo, hi, rc, spans);
   size_t most = 0;
   for (size_t s = 0; s < spans.size(); s += 2) most += spans[s + 1] - spans[s];
-  if (hits.size() < most) hits.resize(most);
-  uint32_t* hit = hits.data();
+  return most;
+}
+template <class Lanes>
+FF_SIMD_BODY size_t pairCandidatesOf(const std::vector<uint32_t>& spans, const float* x, const float* y,
+                                     const float* z, uint32_t b, uint32_t e, const float* sx, const float* sy,
+                                     const float* sz, float rc2, uint32_t* hit) {
+  const int n = int(e - b);
+  const f8 xe = simd::loadN(x + b, n, kFar), ye = simd::loadN(y + b, n, kFar),
+           ze = simd::loadN(z + b, n, kFar);
   size_t nh = 0;
   for (size_t s = 0; s < spans.size(); s += 2)
     for (uint32_t k = spans[s]; k < spans[s + 1]; ++k) {
       const f8 dx = sx[k] - xe, dy = sy[k] - ye, dz = sz[k] - ze;
       hit[nh] = k;
-      nh += Lanes::any(dx * dx + dy * dy + dz * dz < r2) ? 1 : 0;
+      nh += Lanes::any(dx * dx + dy * dy + dz * dz < rc2) ? 1 : 0;
     }
+  return nh;
+}
+FF_SIMD_DISPATCH(pairCandidates)
+
+// Control scale sums (eq. 5 and the feedback's mean velocity) of the control
+// particles hit[0 .. nh-1] (sorted positions in the control grid, ascending)
+// over the fluid group b .. e-1, added to acc (per sorted position 4 x 8
+// lanes: sum W, sum W v x, y, z). A control particle's sum runs in 8 lanes:
+// the fluid particle at sorted position k adds to lane k mod 8, so the group
+// is loaded into those lanes (the others far, still). Groups visited in
+// ascending order add to each lane in ascending k: the sums of
+// kernels/control_scale.cl (and of a walk per control particle) bit for bit,
+// since a fluid particle out of a control particle's own radius (sr2, scoef:
+// its squared radius and poly6 coefficient) adds exactly 0.
+template <class>
+FF_SIMD_BODY void scaleScatterOf(size_t n, const float* x, const float* y, const float* z, const float* vx,
+                                 const float* vy, const float* vz, uint32_t b, uint32_t e,
+                                 const uint32_t* hit, size_t nh, const float* sx, const float* sy,
+                                 const float* sz, const float* sr2, const float* scoef, float* acc) {
+  // Lane l holds position base + l or base + 8 + l, whichever lies in b .. e-1.
+  const uint32_t base = b & ~7u;
+  const int m0 = int(std::min<size_t>(8, n - base)),
+            m1 = int(std::min<size_t>(8, n - std::min<size_t>(n, base + 8)));
+  const i8 iota = {0, 1, 2, 3, 4, 5, 6, 7};
+  const i8 low = iota + int(base) >= int(b), k = low ? iota + int(base) : iota + int(base + 8);
+  const i8 in = k < int(e);
+  auto lanes = [&](const float* a, float fill) {
+    const f8 v = low ? simd::loadN(a + base, m0, fill) : simd::loadN(a + base + 8, m1, fill);
+    return in ? v : simd::splat(fill);
+  };
+  const f8 xr = lanes(x, kFar), yr = lanes(y, kFar), zr = lanes(z, kFar);
+  const f8 vxr = lanes(vx, 0.0f), vyr = lanes(vy, 0.0f), vzr = lanes(vz, 0.0f);
+  for (size_t q = 0; q < nh; ++q) {
+    const uint32_t k = hit[q];
+    const f8 dx = sx[k] - xr, dy = sy[k] - yr, dz = sz[k] - zr;
+    const f8 w = ff_poly6(dx * dx + dy * dy + dz * dz, sr2[k], scoef[k]);
+    float* a = acc + 32 * size_t(k);
+    const f8 add[4] = {w, w * vxr, w * vyr, w * vzr};
+    for (int j = 0; j < 4; ++j) {
+      f8 v;
+      std::memcpy(&v, a + 8 * j, sizeof v);
+      v += add[j];
+      std::memcpy(a + 8 * j, &v, sizeof v);
+    }
+  }
+}
+FF_SIMD_DISPATCH(scaleScatter)
+
+// Control force sums of the fluid particles b .. e-1 (sorted positions, at
+// most 8, one row of the fluid grid) as lanes, over the control particles
+// hit[0 .. nh-1] (sorted positions in the control grid, ascending: those that
+// some lane reaches, or more) broadcast one at a time: each lane sums as
+// kernels/control_forces.cl does for its particle (a control particle that no
+// lane reaches adds exactly 0 to every lane, as the kernel's any() skips it).
+// out: 7 x 8 floats (attraction x, y, z, sum of W, sum of W v x, y, z).
+struct ForceSumsArgs {
+  const float *x, *y, *z;                            // the sorted fluid
+  const float *sx, *sy, *sz, *ss, *svx, *svy, *svz;  // control particles in cp_grid order
+  float r2, coef;                                    // eq. 4 and 6's kernel: P.r2 and P.coef
+};
+template <class>
+FF_SIMD_BODY void forceSumsOf(const ForceSumsArgs& A, uint32_t b, uint32_t e, const uint32_t* hit, size_t nh,
+                              float* out) {
+  const int n = int(e - b);
+  const f8 xe = simd::loadN(A.x + b, n, kFar), ye = simd::loadN(A.y + b, n, kFar),
+           ze = simd::loadN(A.z + b, n, kFar);
+  const float *sx = A.sx, *sy = A.sy, *sz = A.sz, r2 = A.r2;
   const f8 zero = simd::splat(0.0f);
   f8 fax = zero, fay = zero, faz = zero, wsum = zero, vsx = zero, vsy = zero, vsz = zero;
   for (size_t q = 0; q < nh; ++q) {
@@ -229,50 +191,119 @@ Controller::SortedFluid Controller::sorted(const FluidView& f) {
   return s;
 }
 
+void Controller::sortControl() {
+  const size_t n = set_.size();
+  // Cells of radius / FF_CONTROL_GRID_DIVISIONS, over the container if bounded.
+  const float cell = cp_.radius / float(FF_CONTROL_GRID_DIVISIONS);
+  if (bounded_)
+    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell, lo_, hi_, gridCellCap(n));
+  else
+    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell);
+  const auto& order = cp_grid_.order();
+  for (auto* a : {&sx_, &sy_, &sz_, &svx_, &svy_, &svz_, &sr2_, &scoef_}) a->resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t i = order[k];
+    sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i];
+    svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
+    const float ri = ff_control_radius(cp_.radius, set_.radius_scale[i]);
+    sr2_[k] = ri * ri, scoef_[k] = ff_poly6_coef(ri);
+  }
+}
+
+void Controller::findPairs(const SortedFluid& sf) {
+  // Every control particle reaches the control radius in eq. 4 and 6, its
+  // own (adaptive control, at most that) in eq. 5.
+  float most_scale = 1.0f;
+  for (float v : set_.radius_scale) most_scale = std::max(most_scale, v);
+  const float rc = ff_control_radius(cp_.radius, most_scale), rc2 = rc * rc;
+  const std::vector<uint32_t>& groups = *sf.groups;
+  const long ngroups = long(groups.size() / 2);
+  hit_at_.resize(3 * size_t(ngroups));
+  const int threads = omp_get_max_threads();
+  if (hit_bufs_.size() < size_t(threads)) hit_bufs_.resize(size_t(threads));
+  // The control particles in chunks of their sorted positions (computeScale):
+  // each group's pairs are cut where a chunk begins.
+  const size_t n = set_.size(), nch = std::min(n, 2 * size_t(threads));
+  chunks_ = nch;
+  hit_cut_.resize((nch + 1) * size_t(ngroups));
+#pragma omp parallel
+  {
+    const size_t t = size_t(omp_get_thread_num());
+    std::vector<uint32_t>& buf = hit_bufs_[t];
+    std::vector<uint32_t>& spans = threadSpans();
+    size_t used = 0;
+#pragma omp for schedule(dynamic, 16)
+    for (long g = 0; g < ngroups; ++g) {
+      const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
+      const size_t room = pairCandidateRoom(cp_grid_, sf.x, sf.y, sf.z, b, e, rc, spans);
+      if (buf.size() < used + room) buf.resize(std::max(used + room, 2 * buf.size()));
+      const size_t nh = pairCandidates(spans, sf.x, sf.y, sf.z, b, e, sx_.data(), sy_.data(), sz_.data(), rc2,
+                                       buf.data() + used);
+      uint32_t* at = hit_at_.data() + 3 * size_t(g);
+      at[0] = uint32_t(t), at[1] = uint32_t(used), at[2] = uint32_t(nh);
+      uint32_t* cut = hit_cut_.data() + (nch + 1) * size_t(g);
+      const uint32_t* h = buf.data() + used;
+      for (size_t c = 0; c <= nch; ++c) {
+        const uint32_t from = uint32_t(c * n / nch);
+        uint32_t below = 0;
+        for (size_t q = 0; q < nh; ++q) below += h[q] < from ? 1u : 0u;
+        cut[c] = below;
+      }
+      used += nh;
+    }
+  }
+  // Group g's pairs: hit_ptr_[g] .. hit_ptr_[g] + count.
+  hit_ptr_.resize(size_t(ngroups));
+  for (size_t g = 0; g < size_t(ngroups); ++g)
+    hit_ptr_[g] = hit_bufs_[hit_at_[3 * g]].data() + hit_at_[3 * g + 1];
+}
+
 bool Controller::computeScale(const FluidView& f) {
-  const long n = long(set_.size());
+  const size_t n = set_.size();
+  pairs_ready_ = false;
   if (n == 0) return true;
   const SortedFluid sf = sorted(f);
-  // Neighbours in the set (a pair) share one walk where they have the same
-  // radius and lie within half of it of each other (scaleSumsPair).
-  [[maybe_unused]] const bool pairs = simd::hasAvx512();
-  const long npairs = (n + 1) / 2;
+  // The pairs of fluid and control particles within reach, found once from
+  // the fluid's side; addForces reuses them.
+  sortControl();
+  findPairs(sf);
+  pairs_ready_ = true, pairs_x_ = f.x, pairs_n_ = f.n;
+  // Each control particle's sums, from the fluid groups in ascending order
+  // (scaleScatter): the control particles in chunks of their sorted
+  // positions, each chunk's sums added by one thread.
+  const std::vector<uint32_t>& groups = *sf.groups;
+  const long ngroups = long(groups.size() / 2);
+  acc_.resize(32 * n);
+  const long chunks = long(chunks_);
+  const float* sv[5] = {sx_.data(), sy_.data(), sz_.data(), sr2_.data(), scoef_.data()};
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long c = 0; c < chunks; ++c) {
+    const uint32_t ca = uint32_t(size_t(c) * n / size_t(chunks)),
+                   cb = uint32_t(size_t(c + 1) * n / size_t(chunks));
+    std::fill(acc_.begin() + 32 * ptrdiff_t(ca), acc_.begin() + 32 * ptrdiff_t(cb), 0.0f);
+    for (long g = 0; g < ngroups; ++g) {
+      const uint32_t* cut = hit_cut_.data() + (size_t(chunks) + 1) * size_t(g) + c;  // chunk c's pairs
+      if (cut[0] == cut[1]) continue;
+      scaleScatter(f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, groups[2 * size_t(g)],
+                   groups[2 * size_t(g) + 1], hit_ptr_[size_t(g)] + cut[0], size_t(cut[1] - cut[0]), sv[0],
+                   sv[1], sv[2], sv[3], sv[4], acc_.data());
+    }
+  }
+  const auto& order = cp_grid_.order();
   int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
-  for (long q = 0; q < npairs; ++q) {
-    const long i0 = 2 * q, i1 = std::min(n, i0 + 2);
-    ScaleSums t[2];
-    const float ra = ff_control_radius(cp_.radius, set_.radius_scale[size_t(i0)]);
-    const long ib = std::min(i0 + 1, n - 1);  // b: the pair's second, if there is one
-    const float rb = ff_control_radius(cp_.radius, set_.radius_scale[size_t(ib)]);
-    bool done = false;
-#if FF_SIMD_AVX2
-    const float ab[2][3] = {{set_.x[i0], set_.y[i0], set_.z[i0]}, {set_.x[ib], set_.y[ib], set_.z[ib]}};
-    const float near = 0.5f * ra;
-    if (pairs && i1 == i0 + 2 && rb == ra && std::fabs(ab[0][0] - ab[1][0]) <= near &&
-        std::fabs(ab[0][1] - ab[1][1]) <= near && std::fabs(ab[0][2] - ab[1][2]) <= near) {
-      scaleSumsPair(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, ab, ra, ff_poly6_coef(ra), t);
-      done = true;
-    }
-#endif
-    auto one = [&](long i, float r) {  // particle i's sums, alone
-      const float p[1][3] = {{set_.x[i], set_.y[i], set_.z[i]}};
-      ScaleSums o[1];
-      scaleSums(*sf.grid, f.n, sf.x, sf.y, sf.z, sf.vx, sf.vy, sf.vz, p, r, ff_poly6_coef(r), o);
-      return o[0];
+#pragma omp parallel for schedule(static) reduction(| : bad) if (long(n) > kParallelLightLoop)
+  for (long k = 0; k < long(n); ++k) {
+    const float* a = acc_.data() + 32 * k;
+    auto total = [a](int j) {
+      const float* v = a + 8 * j;
+      return ff_lane_sum8(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
     };
-    if (!done) {
-      t[0] = one(i0, ra);
-      if (i1 == i0 + 2) t[1] = one(ib, rb);
-    }
-    for (long i = i0; i < i1; ++i) {
-      const ScaleSums& ti = t[i - i0];
-      ff_float3 u;
-      const float s = ff_control_scale_of(ti.w, FF_F3(ti.ux, ti.uy, ti.uz), f.volume, &u);
-      fields_.s[i] = s;
-      fields_.ux[i] = u.x, fields_.uy[i] = u.y, fields_.uz[i] = u.z;
-      bad |= std::isfinite(s) && std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? 0 : 1;
-    }
+    ff_float3 u;
+    const float s = ff_control_scale_of(total(0), FF_F3(total(1), total(2), total(3)), f.volume, &u);
+    const uint32_t i = order[size_t(k)];
+    fields_.s[i] = s;
+    fields_.ux[i] = u.x, fields_.uy[i] = u.y, fields_.uz[i] = u.z;
+    bad |= std::isfinite(s) && std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) ? 0 : 1;
   }
   return !bad;
 }
@@ -280,21 +311,16 @@ bool Controller::computeScale(const FluidView& f) {
 bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, float* az) {
   const size_t n = set_.size();
   if (n == 0) return true;
-  const float r = cp_.radius;
   const SortedFluid sf = sorted(f);
-  // Control particles sorted by cell of their own grid, with s and velocity.
-  const float cell = r / float(FF_CONTROL_GRID_DIVISIONS);
-  if (bounded_)
-    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell, lo_, hi_, gridCellCap(n));
-  else
-    cp_grid_.build(n, set_.x.data(), set_.y.data(), set_.z.data(), cell);
+  // The control particles in their grid's order, and the pairs within reach:
+  // computeScale's, on this view with nothing moved since, else found anew.
+  const bool reuse =
+      pairs_ready_ && pairs_x_ == f.x && pairs_n_ == f.n && hit_at_.size() == 3 * (sf.groups->size() / 2);
+  pairs_ready_ = false;
+  if (!reuse) sortControl(), findPairs(sf);
   const auto& order = cp_grid_.order();
-  for (auto* a : {&sx_, &sy_, &sz_, &ss_, &svx_, &svy_, &svz_}) a->resize(n);
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t i = order[k];
-    sx_[k] = set_.x[i], sy_[k] = set_.y[i], sz_[k] = set_.z[i], ss_[k] = fields_.s[i];
-    svx_[k] = set_.vx[i], svy_[k] = set_.vy[i], svz_[k] = set_.vz[i];
-  }
+  ss_.resize(n);
+  for (size_t k = 0; k < n; ++k) ss_[k] = fields_.s[order[k]];
   const float cp_volume = set_.particle_volume;
   // Recapture: the centre of the unfilled control particles and its fade.
   // It aims there where the centre lies among the control particles (within
@@ -329,15 +355,14 @@ bool Controller::addForces(const FluidView& f, float dt, float* ax, float* ay, f
   // Every control particle reaches the control radius in eq. 4 and 6 (and
   // so in the carried gravity and the recapture, which read their sums):
   // adaptive control's own radii act in eq. 5 only (computeScale).
-  const ForceSumsArgs fs{sf.x,        sf.y,       sf.z,       &cp_grid_,   sx_.data(),
-                         sy_.data(),  sz_.data(), ss_.data(), svx_.data(), svy_.data(),
-                         svz_.data(), r,          P.r2,       P.coef};
+  const ForceSumsArgs fs{sf.x,       sf.y,        sf.z,        sx_.data(),  sy_.data(), sz_.data(),
+                         ss_.data(), svx_.data(), svy_.data(), svz_.data(), P.r2,       P.coef};
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad)
   for (long g = 0; g < ngroups; ++g) {
     const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
     float sums[56];
-    forceSums(fs, b, e, sums);
+    forceSums(fs, b, e, hit_ptr_[size_t(g)], size_t(hit_at_[3 * size_t(g) + 2]), sums);
     for (uint32_t k = b; k < e; ++k) {
       const size_t l = k - b;
       const float wsum = sums[24 + l];
@@ -402,8 +427,10 @@ size_t Controller::memoryBytes() const {
                         &fvz_})
     floats += v->capacity();
   for (const auto* v : {&set_.clusters.start, &set_.clusters.members, &set_.clusters.of_start,
-                        &set_.clusters.of, &fluid_groups_})
+                        &set_.clusters.of, &fluid_groups_, &hit_at_, &hit_cut_})
     uints += v->capacity();
+  for (const auto& v : hit_bufs_) uints += v.capacity();
+  uints += hit_ptr_.capacity() * sizeof(const uint32_t*) / sizeof(uint32_t);
   return reached_.capacity() + rfield_.memoryBytes() + floats * sizeof(float) + uints * sizeof(uint32_t) +
          q_.capacity() * sizeof(ff_quat) + cp_grid_.memoryBytes() + fluid_grid_.memoryBytes();
 }
@@ -422,6 +449,7 @@ int Controller::advance(float dt) {
 }
 
 bool Controller::shapeMatchStep() {
+  pairs_ready_ = false;  // the control particles move
   const long n = long(set_.size());
   if (n == 0) return true;
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);

@@ -41,7 +41,9 @@ struct FluidView {
 
 class Controller {
  public:
-  void setParams(const ControlParams& cp, const ShapeMatchParams& sm) { cp_ = cp, sm_ = sm; }
+  void setParams(const ControlParams& cp, const ShapeMatchParams& sm) {
+    cp_ = cp, sm_ = sm, pairs_ready_ = false;
+  }
   // The host's gravity: the anchor (sm.anchor) holds the set against it (none while it is 0).
   void setGravity(const float g[3]) { g_[0] = g[0], g_[1] = g[1], g_[2] = g[2]; }
   // Control particles are kept inside this box (the container), if set.
@@ -55,6 +57,9 @@ class Controller {
   // control particle, for the feedback. False if a value is not finite.
   bool computeScale(const FluidView& f);
   // Phase "control forces": adds the accelerations of eq. 4 and eq. 6 to a*.
+  // Called right after computeScale on the same view, with nothing moved in
+  // between (as the phases run), it reuses the pairs of fluid and control
+  // particles within reach that computeScale found.
   // Eq. 6 is integrated implicitly over dt (see ff_velocity_force_implicit).
   // False if a value is not finite.
   bool addForces(const FluidView& f, float dt, float* ax, float* ay, float* az);
@@ -112,6 +117,11 @@ class Controller {
     const uint32_t* order = nullptr;  // sorted position -> view index (null: the same)
   };
   SortedFluid sorted(const FluidView& f);
+  // The control particles sorted by cp_grid_ (sx_ .. svz_, sr2_, scoef_).
+  void sortControl();
+  // For each group of the sorted fluid, the control particles (sorted
+  // positions) that some particle of it reaches: hit_at_, hit_bufs_.
+  void findPairs(const SortedFluid& sf);
 
   double clock_ = 0.0;  // time not yet consumed by shape-matching steps
   bool sm_finite_ = true;
@@ -121,6 +131,21 @@ class Controller {
   std::vector<uint8_t> reached_;
   std::vector<float> fx_, fy_, fz_, fvx_, fvy_, fvz_;       // the fluid in fluid_grid_ order (no view grid)
   std::vector<float> sx_, sy_, sz_, ss_, svx_, svy_, svz_;  // control particles in cp_grid_ order
+  std::vector<float> sr2_, scoef_;  // and their own radius squared and its poly6 coefficient (eq. 5)
+  // The pairs within reach, per fluid group (thread's buffer, offset, count
+  // in hit_bufs_): the sorted control positions, ascending. pairs_ready_:
+  // computeScale found them on the view at pairs_x_ (pairs_n_ particles).
+  std::vector<uint32_t> hit_at_;
+  std::vector<std::vector<uint32_t>> hit_bufs_;
+  std::vector<const uint32_t*> hit_ptr_;  // group g's first pair in hit_bufs_
+  // Per group, chunks_ + 1 cuts: its pairs with control particles of chunk c
+  // (sorted positions c n / chunks_ .. (c + 1) n / chunks_ - 1) are c's cut .. c+1's.
+  std::vector<uint32_t> hit_cut_;
+  size_t chunks_ = 1;
+  bool pairs_ready_ = false;
+  const float* pairs_x_ = nullptr;
+  size_t pairs_n_ = 0;
+  std::vector<float> acc_;  // the scale sums' lanes: per sorted control position 4 x 8 floats
   std::vector<ff_quat> q_;
   std::vector<float> cx_, cy_, cz_, gx_, gy_, gz_, cvx_, cvy_, cvz_;
 };

@@ -17,7 +17,7 @@ bool isFrameFileName(const std::string& name) {
   return std::regex_match(name, frame);
 }
 
-void prepareExportFolder(const std::string& dir, bool overwrite) {
+void prepareExportFolder(const std::string& dir, bool overwrite, const std::string& overwrite_option) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir + ": cannot create export folder: " + ec.message());
@@ -31,7 +31,8 @@ void prepareExportFolder(const std::string& dir, bool overwrite) {
   if (!overwrite)
     throw Error(dir + ": the export folder already holds frames of another run (" +
                 old.front().filename().string() + " and " + std::to_string(old.size() - 1) +
-                " more); pick an empty folder, or pass --overwrite to remove those frames first");
+                " more); pick an empty folder, or pass " + overwrite_option +
+                " to remove those frames first");
   for (const fs::path& p : old)
     if (!fs::remove(p, ec) && ec) throw Error(p.string() + ": cannot remove old frame: " + ec.message());
 }

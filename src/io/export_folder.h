@@ -17,8 +17,10 @@ bool isFrameFileName(const std::string& name);
 
 // Creates `dir` if needed. If it holds frame files: with overwrite, removes
 // them; else throws ff::Error naming the folder, one of the files and the
-// --overwrite way out. Throws ff::Error naming the folder if it cannot be
+// way out, `overwrite_option` (the CLI's --overwrite, Python's
+// overwrite=True). Throws ff::Error naming the folder if it cannot be
 // created, read or cleaned.
-void prepareExportFolder(const std::string& dir, bool overwrite);
+void prepareExportFolder(const std::string& dir, bool overwrite,
+                         const std::string& overwrite_option = "--overwrite");
 
 }  // namespace ff

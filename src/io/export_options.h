@@ -16,8 +16,9 @@ struct ExportOptions {
   double fps = 30.0;     // frames per simulated second
   long every_steps = 0;  // > 0: a frame every K steps instead (old --export-every)
   std::vector<ExportFormat> formats{ExportFormat::Vtk};  // at least one, each once
-  bool overwrite = false;  // remove another run's frames first (io/export_folder.h)
-  SurfaceOptions surface;  // surface meshes (and level sets), when enabled
+  bool overwrite = false;                        // remove another run's frames first (io/export_folder.h)
+  std::string overwrite_option = "--overwrite";  // how the user asks for it, for the refusal's message
+  SurfaceOptions surface;                        // surface meshes (and level sets), when enabled
 };
 
 // "vtk,bgeo,ply" (any order, comma-separated, each at most once) to formats.

@@ -89,7 +89,7 @@ void writeCloud(const std::string& path, const PointCloud& c, ExportFormat f) {
 
 FrameExporter::FrameExporter(ExportOptions options) : options_(std::move(options)) {
   validateExportOptions(options_, "export");
-  prepareExportFolder(options_.dir, options_.overwrite);
+  prepareExportFolder(options_.dir, options_.overwrite, options_.overwrite_option);
   for (ExportFormat f : options_.formats)
     if (f == ExportFormat::Vtk) {
       fluid_pvd_ = std::make_unique<PvdIndex>(options_.dir + "/fluid.pvd");

@@ -163,6 +163,7 @@ class PyExporter {
     o.fps = fps;
     o.every_steps = every_steps;
     o.overwrite = overwrite;
+    o.overwrite_option = "overwrite=True";
     exporter_ = std::make_unique<ff::FrameExporter>(o);
   }
   // Writes the simulation's current state as the next frame.

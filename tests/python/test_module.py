@@ -175,6 +175,13 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(exporter.frames, 2)
         mesh = meshio.read(os.path.join(out, "fluid_00001.ply"))
         self.assertEqual(len(mesh.points), 1000)
+        # A folder holding another run's frames: refused, naming Python's keyword.
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Exporter(out, formats="ply", every_steps=1).write(sim)
+        self.assertIn("overwrite=True", str(ctx.exception))
+        self.assertNotIn("--", str(ctx.exception))
+        flowform.Exporter(out, formats="ply", every_steps=1, overwrite=True).write(sim)
+        self.assertFalse(os.path.exists(os.path.join(out, "fluid_00001.ply")))
         ck = os.path.join(self.dir, "c.ffck")
         sim.save_checkpoint(ck)
         a = sim.run(steps=3)

@@ -222,7 +222,13 @@ PYBIND11_MODULE(flowform, m) {
       .def_property_readonly("backend", [](PySimulation& s) { return s.sim().backend().name(); })
       .def(
           "save_checkpoint",
-          [](PySimulation& s, const std::string& path) { ff::writeCheckpoint(path, s.sim()); },
+          [](PySimulation& s, const std::string& path) {
+            // Refused here in Python's words (the backend's own message names --backend).
+            if (!s.sim().backend().writesCheckpoints())
+              throw Error(path + ": the " + s.sim().backend().name() +
+                          " backend cannot write checkpoints; use backend='cpu'");
+            ff::writeCheckpoint(path, s.sim());
+          },
           py::arg("path"), "Writes a checkpoint (as `flowform run --checkpoint-every`).");
 
   m.def(
@@ -230,8 +236,11 @@ PYBIND11_MODULE(flowform, m) {
       [](const std::string& path, const std::string& backend, int device, int threads) {
         ff::checkThreadCount(threads, "threads");
         std::string note;
-        return PySimulation(ff::loadCheckpoint(
-            path, ff::makeBackend(backend, device, threads, &note, ff::pythonBackendNames())));
+        auto b = ff::makeBackend(backend, device, threads, &note, ff::pythonBackendNames());
+        if (!b->writesCheckpoints())
+          throw Error(path + ": the " + b->name() +
+                      " backend cannot resume from a checkpoint; use backend='cpu'");
+        return PySimulation(ff::loadCheckpoint(path, std::move(b)));
       },
       py::arg("path"), py::arg("backend") = "cpu", py::arg("device") = -1, py::arg("threads") = 0,
       "A Simulation resumed from a checkpoint file.");

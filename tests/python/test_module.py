@@ -188,6 +188,19 @@ class ModuleTest(unittest.TestCase):
         b = flowform.resume(ck, threads=2).run(steps=3)
         self.assertTrue(np.array_equal(a["iou"], b["iou"]))
         self.assertTrue(np.array_equal(a["max_speed"], b["max_speed"]))
+        # The OpenCL backend (where there is one) cannot write or resume
+        # checkpoints: refused naming Python's backend='cpu', not --backend.
+        try:
+            cl = flowform.Simulation(SCENE, backend="opencl", threads=2)
+        except flowform.Error:
+            return  # built without OpenCL, or no device
+        for refused in (lambda: cl.save_checkpoint(os.path.join(self.dir, "cl.ffck")),
+                        lambda: flowform.resume(ck, backend="opencl", threads=2)):
+            with self.assertRaises(flowform.Error) as ctx:
+                refused()
+            self.assertIn("backend='cpu'", str(ctx.exception))
+            self.assertNotIn("--", str(ctx.exception))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "cl.ffck")))
 
 
 if __name__ == "__main__":

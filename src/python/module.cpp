@@ -29,9 +29,46 @@ namespace {
 using ff::Error;
 using ff::Simulation;
 
-// Python value -> JSON text (through Python's json module), for the scene reader.
-std::string toJson(const py::handle& value) {
-  return py::module_::import("json").attr("dumps")(value).cast<std::string>();
+// A NumPy array or scalar as Python lists and numbers (its tolist()), anything else as it is.
+py::object plain(const py::handle& v) {
+  if (!py::isinstance<py::str>(v) && py::hasattr(v, "tolist")) return v.attr("tolist")();
+  return py::reinterpret_borrow<py::object>(v);
+}
+
+// The key path ("fluid[0].origin[1]", under `path`) of the first number in
+// `v` that is not finite, or "" where every number is.
+std::string nonFinite(const py::handle& value, const std::string& path) {
+  const py::object v = plain(value);
+  if (py::isinstance<py::float_>(v)) return std::isfinite(v.cast<double>()) ? "" : path;
+  if (py::isinstance<py::dict>(v)) {
+    for (const auto& kv : v.cast<py::dict>()) {
+      const std::string key = py::str(kv.first).cast<std::string>();
+      const std::string bad = nonFinite(kv.second, path.empty() ? key : path + "." + key);
+      if (!bad.empty()) return bad;
+    }
+  } else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    size_t i = 0;
+    for (const auto& e : v) {
+      const std::string bad = nonFinite(e, path + "[" + std::to_string(i++) + "]");
+      if (!bad.empty()) return bad;
+    }
+  }
+  return "";
+}
+
+// Python value -> JSON text (through Python's json module), for the scene
+// reader; NumPy arrays and scalars as their lists and numbers. JSON has no
+// NaN or infinity: such a number is refused naming `source` and its key path
+// under `path` (Python's json would write NaN, which the reader calls invalid JSON).
+std::string toJson(const py::handle& value, const std::string& source, const std::string& path) {
+  const std::string bad = nonFinite(value, path);
+  if (!bad.empty()) throw Error(source + ": " + bad + ": must be a finite number");
+  const py::cpp_function tolist([](const py::object& o) -> py::object {
+    if (py::hasattr(o, "tolist")) return o.attr("tolist")();
+    throw py::type_error("Object of type " + py::str(py::type::of(o).attr("__name__")).cast<std::string>() +
+                         " is not JSON serializable");
+  });
+  return py::module_::import("json").attr("dumps")(value, py::arg("default") = tolist).cast<std::string>();
 }
 
 std::string cwd() {
@@ -60,7 +97,7 @@ class PySimulation {
     ff::checkThreadCount(threads, "threads");
     ff::SceneDesc desc;
     if (py::isinstance<py::dict>(scene))
-      desc = ff::parseScene(toJson(scene), "<dict>", cwd());
+      desc = ff::parseScene(toJson(scene, "<dict>", ""), "<dict>", cwd());
     else if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__"))
       desc = ff::loadScene(py::str(py::module_::import("os").attr("fspath")(scene)).cast<std::string>());
     else if (scene.is_none())
@@ -134,16 +171,17 @@ class PySimulation {
 
   void setTarget(const py::object& target) {
     if (target.is_none()) return sim_->clearTarget();
-    sim_->setTarget(
-        ff::parseTargetSpec(ff::parseJsonStrict(toJson(target), "<target>"), "<target>", "target", cwd()));
+    sim_->setTarget(ff::parseTargetSpec(ff::parseJsonStrict(toJson(target, "<target>", "target"), "<target>"),
+                                        "<target>", "target", cwd()));
   }
   void setRegion(const py::object& region) {
-    sim_->setRegion(
-        ff::parseRegionDesc(ff::parseJsonStrict(toJson(region), "<region>"), "<region>", "region"));
+    sim_->setRegion(ff::parseRegionDesc(ff::parseJsonStrict(toJson(region, "<region>", "region"), "<region>"),
+                                        "<region>", "region"));
   }
   void setParams(const py::dict& params) {
     ff::Params p = sim_->scene().params;
-    ff::parseParamsOverlay(ff::parseJsonStrict(toJson(params), "<params>"), "<params>", "params", p);
+    ff::parseParamsOverlay(ff::parseJsonStrict(toJson(params, "<params>", "params"), "<params>"), "<params>",
+                           "params", p);
     sim_->setParams(p);
   }
 

@@ -126,6 +126,36 @@ class ModuleTest(unittest.TestCase):
         with self.assertRaises(flowform.Error):
             sim.run(steps=1, seconds=1.0)
 
+    def test_nan_is_refused_naming_its_key_and_numpy_values_are_read(self):
+        # NaN and infinity (json.dumps wrote NaN, which the reader called
+        # invalid JSON): refused naming the key path; NumPy arrays and
+        # scalars are read as their numbers (a TypeError before).
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        cases = [
+            (lambda: sim.set_params({"fluid": {"viscosity": float("nan")}}),
+             "<params>: params.fluid.viscosity: must be a finite number"),
+            (lambda: sim.set_params({"fluid": {"gravity": np.array([0.0, -np.inf, 0.0])}}),
+             "<params>: params.fluid.gravity[1]: must be a finite number"),
+            (lambda: sim.set_target({"shape": "box", "size": (float("inf"), 1, 1)}),
+             "<target>: target.size[0]: must be a finite number"),
+            (lambda: flowform.Simulation(dict(SCENE, fluid=[{"origin": [float("nan"), 0, 0], "dims": [2, 2, 2]}])),
+             "<dict>: fluid[0].origin[0]: must be a finite number"),
+        ]
+        for call, want in cases:
+            with self.assertRaises(flowform.Error) as ctx:
+                call()
+            self.assertEqual(str(ctx.exception), want)
+        sim.set_region({"box": {"min": np.zeros(3), "max": np.array([0.2, 0.05, 0.2], dtype=np.float32)}})
+        sim.set_params({"fluid": {"viscosity": np.float32(0.5)}})
+        sim.step()
+        # The NumPy numbers are the ones read: a box of no height is refused as such.
+        with self.assertRaises(flowform.Error) as ctx:
+            sim.set_region({"box": {"min": np.zeros(3), "max": np.array([0.2, 0.0, 0.2])}})
+        self.assertIn("<region>: region.box: min must be < max on every axis", str(ctx.exception))
+        with self.assertRaises(flowform.Error) as ctx:
+            sim.set_params({"fluid": {"viscosity": np.float64(-1.0)}})
+        self.assertIn("params.fluid.viscosity: must be in [0, 10000] (got -1)", str(ctx.exception))
+
     def test_absurd_run_lengths_and_thread_counts_are_refused(self):
         # Once a MemoryError (steps: the metrics arrays) and a segfault (threads).
         sim = flowform.Simulation(SCENE, backend="cpu", threads=2)

@@ -14,6 +14,7 @@
 #include "cpu/backend_cpu.h"
 #include "ff_dfsph.h"
 #include "metrics/force_pressure.h"
+#include "parallel/simd8.h"
 #include "scene/scene.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
@@ -154,6 +155,118 @@ TEST(DfsphKernel, DensitySourceAtAParticleIsTheWallsShareAtThePredictedPosition)
   }
   EXPECT_GT(near, 500);
   EXPECT_GT(zero, 500);
+}
+
+// One wall as its layers, written with branches (an early return out of
+// reach, fmin / fmax, one polynomial per half): the reference for the
+// branch-free per-lane form in ff_dfsph.h.
+float layersWithBranches(float d, float sp, float vol, float H, float inv_h, float k, float* slope) {
+  const float c = vol / (sp * sp), dm = std::fmax(d, -0.5f * sp);
+  if (dm + 0.5f * sp >= H) {
+    *slope = 0.0f;
+    return 0.0f;
+  }
+  float f = 0.0f, s = 0.0f;
+  for (int m = 0; m < int(H / sp) + 1; ++m) {
+    const float z = dm + (float(m) + 0.5f) * sp;
+    if (z >= H) continue;
+    const float u = std::fmin(std::fmax(z * inv_h, 0.0f), 1.0f);
+    float iq;
+    if (u >= 0.5f) {
+      const float t = 1.0f - u, t4 = t * t * t * t;
+      iq = 0.5f * t4 - 0.4f * t4 * t;
+    } else {
+      const float u2 = u * u;
+      iq = 7.0f / 80.0f - (1.2f * u2 * u2 * u - 1.5f * u2 * u2 + 0.5f * u2);
+    }
+    f -= -16.0f * inv_h * iq;
+    s -= 2.0f * FF_PI * z * ff_cubic(z, inv_h, k);
+  }
+  *slope = c * s;
+  return c * f;
+}
+
+// The walls' share and gradient on 8 lanes (ff_dfsph_wall_of on the OpenMP
+// backend's vectors, as the density phase and the density solve's sources
+// run it) against the one-particle form with branches, bit for bit, at
+// random points inside, near and beyond the walls of a box; and the density
+// solve's source near a wall (ff_dfsph_density_source_wall) on 8 lanes
+// against ff_dfsph_density_source_at, one particle at a time.
+TEST(DfsphKernel, WallShareOnEightLanesIsTheOneParticleFormBitForBit) {
+  using ff::simd::f8;
+  const float H = 0.0833f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
+  const float k = ff_cubic_coef(H), eps = ff_dfsph_eps(inv_h), dt = 0.004f;
+  const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f};
+  unsigned seed = 777u;
+  auto uniform = [&seed](float l, float h) {
+    seed = seed * 1664525u + 1013904223u;
+    return l + (h - l) * float(seed >> 8) / float(1u << 24);
+  };
+  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  int in_reach = 0, out = 0, near = 0;
+  for (int t = 0; t < 2000; ++t) {
+    f8 p[3], u[3], g0[3], va[3], s0, q, rho_hat, rate;
+    for (int l = 0; l < 8; ++l) {
+      for (int a = 0; a < 3; ++a) {
+        // Odd lanes far from the walls of y: in reach of fewer walls, or none.
+        p[a][l] = a == 1 && l % 2 ? uniform(0.2f, 0.4f) : uniform(lo[a] - 0.3f * H, hi[a] + 0.3f * H);
+        if (l % 4 == 1) p[a][l] = 0.5f * (lo[a] + hi[a]) + uniform(-0.1f, 0.1f);
+        u[a][l] = uniform(-3.0f, 3.0f), va[a][l] = uniform(-2.0f, 2.0f);
+      }
+      rho_hat[l] = uniform(0.9f, 1.1f), rate[l] = uniform(-5.0f, 5.0f), q[l] = uniform(0.0f, 3.0f);
+    }
+    f8 grad[3];
+    const f8 share = ff_dfsph_wall_of(p[0], p[1], p[2], lo, hi, sp, vol, H, inv_h, grad);
+    for (int l = 0; l < 8; ++l) {
+      const float pos[3] = {p[0][l], p[1][l], p[2][l]};
+      float side[6], slope[6];
+      for (int w = 0; w < 6; ++w) {
+        const int a = w / 2;
+        const float d = (w % 2 ? 2.0f * (hi[a] - pos[a]) : 2.0f * (pos[a] - lo[a])) - 0.5f * sp;
+        float sl;
+        side[w] = 1.0f - layersWithBranches(d, sp, vol, H, inv_h, k, &sl);
+        slope[w] = (w % 2 ? -2.0f : 2.0f) * sl;
+      }
+      float prod = 1.0f;
+      for (float v : side) prod *= v;
+      const float want = 1.0f - prod;
+      ASSERT_TRUE(same(share[l], want)) << t << " " << l << ": " << share[l] << " " << want;
+      for (int a = 0; a < 3; ++a) {
+        float others_lo = 1.0f, others_hi = 1.0f;
+        for (int w = 0; w < 6; ++w) {
+          if (w != 2 * a) others_lo *= side[w];
+          if (w != 2 * a + 1) others_hi *= side[w];
+        }
+        ASSERT_TRUE(same(grad[a][l], slope[2 * a] * others_lo + slope[2 * a + 1] * others_hi))
+            << t << " " << a;
+      }
+      float one[3];
+      ASSERT_TRUE(same(ff_dfsph_wall(pos, lo, hi, sp, vol, H, inv_h, one), want)) << t << " " << l;
+      ++(prod == 1.0f ? out : in_reach);
+      for (int a = 0; a < 3; ++a) g0[a][l] = grad[a][l];
+      s0[l] = share[l];
+    }
+    f8 g1[3], al;
+    const f8 src = ff_dfsph_density_source_wall(p[0], p[1], p[2], u[0], u[1], u[2], rho_hat, rate, dt, g0, s0,
+                                                va, q, eps, lo, hi, sp, vol, H, inv_h, g1, &al);
+    for (int l = 0; l < 8; ++l) {
+      const float pos[3] = {p[0][l], p[1][l], p[2][l]}, ul[3] = {u[0][l], u[1][l], u[2][l]};
+      const float g0l[3] = {g0[0][l], g0[1][l], g0[2][l]};
+      const float wall[1] = {s0[l]}, vax[1] = {va[0][l]}, vay[1] = {va[1][l]}, vaz[1] = {va[2][l]},
+                  qs[1] = {q[l]};
+      float p1[3], g1l[3], all;
+      if (!ff_dfsph_wall_near(pos, ul, dt, lo, hi, H, p1)) continue;
+      ++near;
+      const float want = ff_dfsph_density_source_at(0, pos, ul, rho_hat[l], rate[l], dt, g0l, 0.5f, wall, vax,
+                                                    vay, vaz, qs, eps, lo, hi, sp, vol, H, inv_h, g1l, &all);
+      ASSERT_TRUE(same(src[l], want)) << t << " " << l;
+      ASSERT_TRUE(same(al[l], all)) << t << " " << l;
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(same(g1[c][l], g1l[c])) << t << " " << l << " " << c;
+    }
+  }
+  EXPECT_GT(in_reach, 2000);
+  EXPECT_GT(out, 2000);
+  EXPECT_GT(near, 2000);
 }
 
 // FF_FMIN / FF_FMAX are inline in C++ (kernels/common/ff_compat.h) and must
@@ -473,7 +586,7 @@ TEST(Dfsph, RestingColumnHoldsItsDensityWithFourMillisecondSubstepsAllowed) {
 // neighbours push into a side wall used to gain more of the wall's share at
 // x + dt u than the wall's gradient at x let its own k remove, and the
 // constant-density solve diverged (NaN at t = 0.036 s; docs/PRESETS.md). With
-// the walls' gradient at x + dt u (ff_dfsph_wall_predicted) every solve
+// the walls' gradient at x + dt u (ff_dfsph_density_source_wall) every solve
 // converges (none reaches the iteration cap), the speed limit of the last
 // safeguard never cuts a velocity, the mean compression stays within issue
 // 9's 1 % for a controlled liquid and no particle is lost.

@@ -32,6 +32,7 @@ typedef float4 ff_quat; /* (x, y, z, w) */
 #define FF_ISFINITE(a) isfinite(a)
 #define FF_ZERO_OF(T) ((T)(0.0f))
 #define FF_GENERIC(def, name) def(float, name) def(float8, name##_8)
+#define FF_GENERIC_S(def, name) def(float, name, ) def(float8, name##_8, _8)
 #else
 #include <cmath>
 #include <cstdint>
@@ -94,7 +95,16 @@ inline float ff_fmax_c(float a, float b) {
 #define FF_GENERIC(def, name) \
   template <class FF_T>       \
   def(FF_T, name)
+#define FF_GENERIC_S(def, name) \
+  template <class FF_T>         \
+  def(FF_T, name, )
 #endif
+/* A formula that calls other FF_GENERIC formulas is a def(T, name, S),
+ * stamped out by FF_GENERIC_S: S is the suffix of its instance (nothing, or
+ * _8 for OpenCL's float8, which has no overloading), and it calls them as
+ * FF_OF(other, S). */
+#define FF_OF(name, S) FF_CAT_(name, S)
+#define FF_CAT_(a, b) a##b
 
 /* Formulas that the neighbour loops evaluate are written once, as a macro
  * def(T, name) for a value type T, and stamped out by FF_GENERIC(def, name):

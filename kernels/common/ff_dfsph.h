@@ -21,7 +21,7 @@
  *   du_i = V sum_j g (k_i + k_j) r_ij - k_i grad S(x_i)               (ff_dfsph_velocity_change)
  * (over dt: the divergence solve applies du, the density solve du / dt;
  * near a wall the density solve takes grad S and alpha at x + dt u, where
- * its source measures the walls' share: ff_dfsph_wall_predicted)
+ * its source measures the walls' share: ff_dfsph_density_source_wall)
  * removes the compression b_i >= 0 that the velocities still cause. As
  * SPlisHSPlasH's DFSPH it iterates Jacobi increments dk_i = alpha_i b_i >= 0
  * (ff_dfsph_increment), applies each increment's velocity change at once and
@@ -77,19 +77,21 @@ FF_FN float ff_cubic_wall_fraction(float d, float inv_h) {
   return 16.0f * ((1.0f / 32.0f - p1) - u * (7.0f / 80.0f - q1));
 }
 
-/* dF/dd = -(16 / H) int_u^1 w(t) t dt (<= 0). */
-FF_FN float ff_cubic_wall_slope(float d, float inv_h) {
-  const float u = ff_clampf(d * inv_h, 0.0f, 1.0f);
-  float iq;
-  if (u >= 0.5f) {
-    const float s = 1.0f - u, s4 = s * s * s * s;
-    iq = 0.5f * s4 - 0.4f * s4 * s;
-  } else {
-    const float u2 = u * u;
-    iq = 7.0f / 80.0f - (1.2f * u2 * u2 * u - 1.5f * u2 * u2 + 0.5f * u2);
+/* dF/dd = -(16 / H) int_u^1 w(t) t dt (<= 0), per lane: u = d / H clamped
+ * to [0, 1] as fmin(fmax(u, 0), 1) (a NaN gives 0), both polynomials
+ * evaluated and one selected. */
+#define FF_CUBIC_WALL_SLOPE_DEF(T, name)                                              \
+  FF_FN T name(T d, float inv_h) {                                                    \
+    const T v = d * inv_h;                                                            \
+    const T v0 = v >= 0.0f ? v : FF_ZERO_OF(T);                                       \
+    const T u = v0 <= 1.0f ? v0 : FF_ZERO_OF(T) + 1.0f;                               \
+    const T s = 1.0f - u, s4 = s * s * s * s;                                         \
+    const T u2 = u * u;                                                               \
+    const T outer = 0.5f * s4 - 0.4f * s4 * s;                                        \
+    const T inner = 7.0f / 80.0f - (1.2f * u2 * u2 * u - 1.5f * u2 * u2 + 0.5f * u2); \
+    return -16.0f * inv_h * (u >= 0.5f ? outer : inner);                              \
   }
-  return -16.0f * inv_h * iq;
-}
+FF_GENERIC(FF_CUBIC_WALL_SLOPE_DEF, ff_cubic_wall_slope)
 
 /* The volume of a particle of the cubic lattice of `spacing`: 1 / sum over
  * the lattice points within H of W, so that the rest lattice has rho_hat = 1
@@ -108,10 +110,19 @@ FF_FN float ff_dfsph_lattice_volume(float spacing, float H) {
 }
 
 /* Whether every layer of a wall at distance d is out of reach (the nearest,
- * at max(d, -spacing / 2) + spacing / 2, at H or beyond). */
-FF_FN int ff_dfsph_wall_out_of_reach(float d, float spacing, float H) {
-  return FF_FMAX(d, -0.5f * spacing) + 0.5f * spacing >= H;
-}
+ * at max(d, -spacing / 2) + spacing / 2, at H or beyond): 1 or 0 per lane.
+ * max as fmax: d where d >= -spacing / 2, else (NaN too) -spacing / 2. */
+#define FF_DFSPH_WALL_NEAREST_DEF(T, name)                               \
+  FF_FN T name(T d, float spacing) {                                     \
+    return d >= -0.5f * spacing ? d : FF_ZERO_OF(T) + (-0.5f * spacing); \
+  }
+FF_GENERIC(FF_DFSPH_WALL_NEAREST_DEF, ff_dfsph_wall_nearest)
+#define FF_DFSPH_WALL_OUT_OF_REACH_DEF(T, name, S)                                                  \
+  FF_FN T name(T d, float spacing, float H) {                                                       \
+    return FF_OF(ff_dfsph_wall_nearest, S)(d, spacing) + 0.5f * spacing >= H ? FF_ZERO_OF(T) + 1.0f \
+                                                                             : FF_ZERO_OF(T);       \
+  }
+FF_GENERIC_S(FF_DFSPH_WALL_OUT_OF_REACH_DEF, ff_dfsph_wall_out_of_reach)
 
 /* One wall at distance d as its layers of boundary particles (Akinci et al.
  * 2012), spaced as the rest lattice and spread evenly over their plane: the
@@ -121,30 +132,44 @@ FF_FN int ff_dfsph_wall_out_of_reach(float d, float spacing, float H) {
  * spacing from the wall sees the wall in place of exactly the missing layers
  * (the continuous F(d) of ff_cubic_wall_fraction counts 3.8 % of rho0 more
  * there). Returns the share and sets *slope to its derivative in d,
- * (vol / spacing^2) sum_m -2 pi z_m W(z_m). */
-FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, float inv_h, float k,
-                                 float* slope) {
-  const float c = vol / (spacing * spacing);
-  const float dm = FF_FMAX(d, -0.5f * spacing);
-  /* Out of reach: no share and no slope, exactly what the loop below would
-   * give. Most particles are out of reach of most walls; this skips their
-   * layers. */
-  if (ff_dfsph_wall_out_of_reach(d, spacing, H)) {
-    *slope = 0.0f;
-    return 0.0f;
+ * (vol / spacing^2) sum_m -2 pi z_m W(z_m). Per lane: a layer at H or beyond
+ * adds an exact 0 (so a wall out of reach, ff_dfsph_wall_out_of_reach, gives
+ * share and slope +0). */
+#define FF_DFSPH_WALL_LAYERS_DEF(T, name, S)                                             \
+  FF_FN T name(T d, float spacing, float vol, float H, float inv_h, float k, T* slope) { \
+    const float c = vol / (spacing * spacing);                                           \
+    const T dm = FF_OF(ff_dfsph_wall_nearest, S)(d, spacing);                            \
+    const int layers = (int)(H / spacing) + 1;                                           \
+    T f = FF_ZERO_OF(T), s = FF_ZERO_OF(T);                                              \
+    for (int m = 0; m < layers; ++m) {                                                   \
+      const T z = dm + ((float)m + 0.5f) * spacing;                                      \
+      f -= z < H ? FF_OF(ff_cubic_wall_slope, S)(z, inv_h) : FF_ZERO_OF(T);              \
+      s -= z < H ? 2.0f * FF_PI * z * FF_OF(ff_cubic, S)(z, inv_h, k) : FF_ZERO_OF(T);   \
+    }                                                                                    \
+    *slope = c * s;                                                                      \
+    return c * f;                                                                        \
   }
-  const int layers = (int)(H / spacing) + 1;
-  float f = 0.0f, s = 0.0f;
-  for (int m = 0; m < layers; ++m) {
-    const float z = dm + ((float)m + 0.5f) * spacing;
-    if (z < H) {
-      f -= ff_cubic_wall_slope(z, inv_h);
-      s -= 2.0f * FF_PI * z * ff_cubic(z, inv_h, k);
-    }
+FF_GENERIC_S(FF_DFSPH_WALL_LAYERS_DEF, ff_dfsph_wall_layers)
+
+/* The distance of the wall of axis `a` ((px, py, pz) the position; hi: the
+ * high wall) as ff_dfsph_wall's layers see it: d' = 2 d - spacing / 2. */
+#define FF_DFSPH_WALL_DISTANCE_DEF(T, name)                                             \
+  FF_FN T name(T p, const float* lo, const float* hi, int a, int high, float spacing) { \
+    return (high ? 2.0f * (hi[a] - p) : 2.0f * (p - lo[a])) - 0.5f * spacing;           \
   }
-  *slope = c * s;
-  return c * f;
-}
+FF_GENERIC(FF_DFSPH_WALL_DISTANCE_DEF, ff_dfsph_wall_distance)
+
+/* 1 where some wall is in reach of (px, py, pz) (ff_dfsph_wall), else 0; per lane. */
+#define FF_DFSPH_WALL_REACH_DEF(T, name, S)                                                       \
+  FF_FN T name(T px, T py, T pz, const float* lo, const float* hi, float spacing, float H) {      \
+    const T p[3] = {px, py, pz};                                                                  \
+    T out = FF_ZERO_OF(T) + 1.0f;                                                                 \
+    for (int w = 0; w < 6; ++w)                                                                   \
+      out *= FF_OF(ff_dfsph_wall_out_of_reach, S)(                                                \
+          FF_OF(ff_dfsph_wall_distance, S)(p[w / 2], lo, hi, w / 2, w % 2, spacing), spacing, H); \
+    return 1.0f - out;                                                                            \
+  }
+FF_GENERIC_S(FF_DFSPH_WALL_REACH_DEF, ff_dfsph_wall_reach)
 
 /* The walls' density share S = 1 - prod_w (1 - F_w) (an edge or a corner
  * counts the region beyond two walls once) and its exact gradient
@@ -166,43 +191,45 @@ FF_FN float ff_dfsph_wall_layers(float d, float spacing, float vol, float H, flo
  * the force stays the gradient of the density (a wall term of 2 k_i grad S
  * instead, the pressure mirroring of IISPH, is not: measured, a resting
  * column blew apart within 0.03 s). The wall reaches one spacing into the
- * fluid and grows up to the wall itself (d' = -spacing / 2). */
+ * fluid and grows up to the wall itself (d' = -spacing / 2).
+ *
+ * Per lane (ff_dfsph_wall_of: the position (px, py, pz), grad: 3 values):
+ * out of reach of every wall (ff_dfsph_wall_reach 0) it gives S = +0 and
+ * grad S = +0 (1 - 1, and +0 + -0 for each axis). ff_dfsph_wall, one
+ * particle, returns those at once there (most particles). */
+#define FF_DFSPH_WALL_DEF(T, name, S)                                                                 \
+  FF_FN T name(T px, T py, T pz, const float* lo, const float* hi, float spacing, float vol, float H, \
+               float inv_h, T* grad) {                                                                \
+    const float k = ff_cubic_coef(H);                                                                 \
+    const T p[3] = {px, py, pz};                                                                      \
+    T side[6], slope[6];                                                                              \
+    for (int w = 0; w < 6; ++w) {                                                                     \
+      T s;                                                                                            \
+      side[w] = 1.0f - FF_OF(ff_dfsph_wall_layers, S)(                                                \
+                           FF_OF(ff_dfsph_wall_distance, S)(p[w / 2], lo, hi, w / 2, w % 2, spacing), \
+                           spacing, vol, H, inv_h, k, &s);                                            \
+      slope[w] = (w % 2 ? -2.0f : 2.0f) * s;                                                          \
+    }                                                                                                 \
+    T prod = FF_ZERO_OF(T) + 1.0f;                                                                    \
+    for (int w = 0; w < 6; ++w) prod *= side[w];                                                      \
+    for (int a = 0; a < 3; ++a) {                                                                     \
+      T others_lo = FF_ZERO_OF(T) + 1.0f, others_hi = FF_ZERO_OF(T) + 1.0f;                           \
+      for (int w = 0; w < 6; ++w) {                                                                   \
+        if (w != 2 * a) others_lo *= side[w];                                                         \
+        if (w != 2 * a + 1) others_hi *= side[w];                                                     \
+      }                                                                                               \
+      grad[a] = slope[2 * a] * others_lo + slope[2 * a + 1] * others_hi;                              \
+    }                                                                                                 \
+    return 1.0f - prod;                                                                               \
+  }
+FF_GENERIC_S(FF_DFSPH_WALL_DEF, ff_dfsph_wall_of)
 FF_FN float ff_dfsph_wall(const float* pos, const float* lo, const float* hi, float spacing, float vol,
                           float H, float inv_h, float* grad) {
-  const float k = ff_cubic_coef(H);
-  float side[6], slope[6], d[6];
-  int out = 1;
-  for (int a = 0; a < 3; ++a) {
-    d[2 * a] = 2.0f * (pos[a] - lo[a]) - 0.5f * spacing;
-    d[2 * a + 1] = 2.0f * (hi[a] - pos[a]) - 0.5f * spacing;
-    out &= ff_dfsph_wall_out_of_reach(d[2 * a], spacing, H) &
-           ff_dfsph_wall_out_of_reach(d[2 * a + 1], spacing, H);
-  }
-  /* Out of reach of every wall (most particles): S = 0 and grad S = 0, the
-   * bits the products below give then (1 - 1, and 0 + -0 for each axis). */
-  if (out) {
+  if (ff_dfsph_wall_reach(pos[0], pos[1], pos[2], lo, hi, spacing, H) == 0.0f) {
     for (int a = 0; a < 3; ++a) grad[a] = 0.0f;
     return 0.0f;
   }
-  for (int a = 0; a < 3; ++a) {
-    const float dlo = d[2 * a], dhi = d[2 * a + 1];
-    float s;
-    side[2 * a] = 1.0f - ff_dfsph_wall_layers(dlo, spacing, vol, H, inv_h, k, &s);
-    slope[2 * a] = 2.0f * s;
-    side[2 * a + 1] = 1.0f - ff_dfsph_wall_layers(dhi, spacing, vol, H, inv_h, k, &s);
-    slope[2 * a + 1] = -2.0f * s;
-  }
-  float prod = 1.0f;
-  for (int w = 0; w < 6; ++w) prod *= side[w];
-  for (int a = 0; a < 3; ++a) {
-    float others_lo = 1.0f, others_hi = 1.0f;
-    for (int w = 0; w < 6; ++w) {
-      if (w != 2 * a) others_lo *= side[w];
-      if (w != 2 * a + 1) others_hi *= side[w];
-    }
-    grad[a] = slope[2 * a] * others_lo + slope[2 * a + 1] * others_hi;
-  }
-  return 1.0f - prod;
+  return ff_dfsph_wall_of(pos[0], pos[1], pos[2], lo, hi, spacing, vol, H, inv_h, grad);
 }
 
 /* The support a wall gives a particle in a pressure gradient. The wall
@@ -240,15 +267,17 @@ FF_FN void ff_dfsph_wall_support(const float* pos, const float* lo, const float*
 
 /* alpha_i = 1 / (q + |wgrad - va|^2) from the fluid's parts of the diagonal,
  * va = V sum_j g r_ij and q = V^2 sum_j g^2 |r_ij|^2, and a wall gradient
- * (0 where the diagonal is at most eps). */
-FF_FN float ff_dfsph_factor_at(const float* wgrad, const float* va, float q, float eps) {
-  float d = q;
-  for (int c = 0; c < 3; ++c) {
-    const float gc = wgrad[c] - va[c];
-    d += gc * gc;
+ * (0 where the diagonal is at most eps). Per lane (wgrad, va: 3 values). */
+#define FF_DFSPH_FACTOR_AT_DEF(T, name)                       \
+  FF_FN T name(const T* wgrad, const T* va, T q, float eps) { \
+    T d = q;                                                  \
+    for (int c = 0; c < 3; ++c) {                             \
+      const T gc = wgrad[c] - va[c];                          \
+      d += gc * gc;                                           \
+    }                                                         \
+    return d > eps ? 1.0f / d : FF_ZERO_OF(T);                \
   }
-  return d > eps ? 1.0f / d : 0.0f;
-}
+FF_GENERIC(FF_DFSPH_FACTOR_AT_DEF, ff_dfsph_factor_at)
 
 /* alpha's floor eps (ff_dfsph_factor_at) for the support H = 1 / inv_h. */
 FF_FN float ff_dfsph_eps(float inv_h) {
@@ -256,21 +285,28 @@ FF_FN float ff_dfsph_eps(float inv_h) {
 }
 
 /* The density phase at one particle from its neighbour sums (self
- * included): w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2.
- * Gives rho_hat, the walls' share S(x_i) and gradient wgrad, and the
- * fluid's parts of the diagonal, va and q (ff_dfsph_factor_at), for the
- * density solve's factor at the predicted position
- * (ff_dfsph_density_source_at); returns alpha_i (0 where the diagonal is
- * below eps: nothing around to push against). */
+ * included): w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2,
+ * and the walls' share `share` = S(x_i) and gradient wgrad
+ * (ff_dfsph_wall). Gives rho_hat and the fluid's parts of the diagonal, va
+ * and q (ff_dfsph_factor_at), for the density solve's factor at the
+ * predicted position (ff_dfsph_density_source_at); returns alpha_i (0 where
+ * the diagonal is below eps: nothing around to push against). Per lane (a,
+ * wgrad, va: 3 values); ff_dfsph_factor_parts: one particle, with its walls. */
+#define FF_DFSPH_FACTOR_OF_DEF(T, name, S)                                                               \
+  FF_FN T name(T share, const T* wgrad, float vol, T w, const T* a, T ssq, float eps, T* rho_hat, T* va, \
+               T* q) {                                                                                   \
+    *rho_hat = vol * w + share;                                                                          \
+    *q = vol * vol * ssq;                                                                                \
+    for (int c = 0; c < 3; ++c) va[c] = vol * a[c];                                                      \
+    return FF_OF(ff_dfsph_factor_at, S)(wgrad, va, *q, eps);                                             \
+  }
+FF_GENERIC_S(FF_DFSPH_FACTOR_OF_DEF, ff_dfsph_factor_of)
 FF_FN float ff_dfsph_factor_parts(const float* pos, const float* lo, const float* hi, float spacing, float H,
                                   float inv_h, float vol, float w, const float* a, float ssq, float eps,
                                   float* rho_hat, float* wgrad, float* wall_share, float* va, float* q) {
   const float share = ff_dfsph_wall(pos, lo, hi, spacing, vol, H, inv_h, wgrad);
   *wall_share = share;
-  *rho_hat = vol * w + share;
-  *q = vol * vol * ssq;
-  for (int c = 0; c < 3; ++c) va[c] = vol * a[c];
-  return ff_dfsph_factor_at(wgrad, va, *q, eps);
+  return ff_dfsph_factor_of(share, wgrad, vol, w, a, ssq, eps, rho_hat, va, q);
 }
 
 /* The rate of rho_hat_i from rs = sum_j g (u_i - u_j).r_ij and the wall,
@@ -313,7 +349,7 @@ FF_GENERIC(FF_DFSPH_DENSITY_SOURCE_DEF, ff_dfsph_density_source)
  * converged; its prediction was wrong). Exactly 0 where neither x nor
  * x + dt u is within H / 2 of a wall (ff_dfsph_wall_near). The solves
  * compute it with the S(x) and grad S(x) of their density phase
- * (ff_dfsph_wall_predicted, ff_dfsph_density_source_at). */
+ * (ff_dfsph_density_source_wall, ff_dfsph_density_source_at). */
 
 /* Along one axis, per lane: 1 where x = p or x + dt u is within H / 2 of
  * the wall at lo or at hi, else 0. */
@@ -348,19 +384,29 @@ FF_FN int ff_dfsph_wall_near(const float* pos, const float* u, float dt, const f
  * dam break at one 4 ms substep: a particle 0.47 spacings above the floor
  * and 0.77 from a side wall, moving into it at 0.48 m/s; its remainder grew
  * from 0.40 to 0.66, 1.06, 1.63, 2.17 in the first iterations and the solve
- * hit its cap with 10^10 Pa; docs/PRESETS.md). */
-FF_FN float ff_dfsph_wall_predicted(const float* p1, float s0, const float* g0, const float* u, float dt,
-                                    const float* lo, const float* hi, float spacing, float vol, float H,
-                                    float inv_h, float* g1) {
-  const float s1 = ff_dfsph_wall(p1, lo, hi, spacing, vol, H, inv_h, g1);
-  return s1 - s0 - dt * (g0[0] * u[0] + g0[1] * u[1] + g0[2] * u[2]);
-}
+ * hit its cap with 10^10 Pa; docs/PRESETS.md). Returns the source
+ * (ff_dfsph_density_source) with that remainder; sets g1 and *alpha, the
+ * factor with g1. Per lane: the position (px, py, pz), its velocity (ux,
+ * uy, uz), the density phase's s0 = S(x), g0 (3 values), va (3 values) and
+ * q. ff_dfsph_density_source_at takes it where ff_dfsph_wall_near. */
+#define FF_DFSPH_DENSITY_SOURCE_WALL_DEF(T, name, S)                                                        \
+  FF_FN T name(T px, T py, T pz, T ux, T uy, T uz, T rho_hat, T rate, float dt, const T* g0, T s0,          \
+               const T* va, T q, float eps, const float* lo, const float* hi, float spacing, float vol,     \
+               float H, float inv_h, T* g1, T* alpha) {                                                     \
+    const T s1 = FF_OF(ff_dfsph_wall_of, S)(px + dt * ux, py + dt * uy, pz + dt * uz, lo, hi, spacing, vol, \
+                                            H, inv_h, g1);                                                  \
+    const T rem = s1 - s0 - dt * (g0[0] * ux + g0[1] * uy + g0[2] * uz);                                    \
+    *alpha = FF_OF(ff_dfsph_factor_at, S)(g1, va, q, eps);                                                  \
+    return FF_OF(ff_dfsph_density_source, S)(rho_hat + rem, rate, dt);                                      \
+  }
+FF_GENERIC_S(FF_DFSPH_DENSITY_SOURCE_WALL_DEF, ff_dfsph_density_source_wall)
 
 /* The density solve's source at particle i, the body of
  * DfsphSolver::sources and of the kernel dfsph_source: the compression after
  * dt (ff_dfsph_density_source) of rho_hat = rho / rho0 moving at the rate
  * `rate`, with the walls' share at x + dt u where x or x + dt u is near a
- * wall (ff_dfsph_wall_near, ff_dfsph_wall_predicted). g0 = grad S(x) and
+ * wall (ff_dfsph_wall_near, ff_dfsph_density_source_wall: the remainder
+ * S(x + dt u) - S(x) - dt grad S(x).u). g0 = grad S(x) and
  * alpha0, and the arrays wall (S(x)), va (vax, vay, vaz) and q: the density
  * phase's (ff_dfsph_factor_parts); the arrays are read only near a wall.
  * Writes the walls' gradient the solve pushes with into g1 (g0, or
@@ -372,15 +418,15 @@ FF_FN float ff_dfsph_density_source_at(uint i, const float* pos, const float* u,
                                        FF_GLOBAL const float* vaz, FF_GLOBAL const float* q, float eps,
                                        const float* lo, const float* hi, float spacing, float vol, float H,
                                        float inv_h, float* g1, float* alpha) {
-  float p1[3], rem = 0.0f;
+  float p1[3];
+  if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) {
+    const float va[3] = {vax[i], vay[i], vaz[i]};
+    return ff_dfsph_density_source_wall(pos[0], pos[1], pos[2], u[0], u[1], u[2], rho_hat, rate, dt, g0,
+                                        wall[i], va, q[i], eps, lo, hi, spacing, vol, H, inv_h, g1, alpha);
+  }
   for (int c = 0; c < 3; ++c) g1[c] = g0[c];
   *alpha = alpha0;
-  if (ff_dfsph_wall_near(pos, u, dt, lo, hi, H, p1)) {
-    rem = ff_dfsph_wall_predicted(p1, wall[i], g0, u, dt, lo, hi, spacing, vol, H, inv_h, g1);
-    const float va[3] = {vax[i], vay[i], vaz[i]};
-    *alpha = ff_dfsph_factor_at(g1, va, q[i], eps);
-  }
-  return ff_dfsph_density_source(rho_hat + rem, rate, dt);
+  return ff_dfsph_density_source(rho_hat + 0.0f, rate, dt);
 }
 
 /* The compression rate the divergence solve removes: only compressing flow,

@@ -75,6 +75,39 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
 }
 FF_SIMD_DISPATCH(factorSums)
 
+// Where the density phase writes each particle's factor and its parts.
+struct FactorOut {
+  float *alpha, *wgx, *wgy, *wgz, *wall, *vax, *vay, *vaz, *q;
+};
+
+// The density phase at the particles b .. e-1 from their sums (factorSums'
+// 6 x 8 lanes) on 8 lanes: the walls' share S(x) and gradient
+// (ff_dfsph_wall_of, skipped where no lane is in a wall's reach: S and
+// grad S are +0 there, the bits it gives) and ff_dfsph_factor_of, as
+// ff_dfsph_factor_parts does for one particle. Writes rho / rho0 to rho_hat.
+template <class Lanes>
+FF_SIMD_BODY void factorPartsOf(const CpuFluid& f, uint32_t b, uint32_t e, const float* sums, const float* lo,
+                                const float* hi, float spacing, const Kernel& kr, float vol, float eps,
+                                float* rho_hat, const FactorOut& o) {
+  const Group g = lanesOf(f.s, b, e);
+  const int n = g.n;
+  const f8 zero = simd::splat(0.0f);
+  f8 share = zero, wg[3] = {zero, zero, zero};
+  const f8 reach = ff_dfsph_wall_reach(g.x, g.y, g.z, lo, hi, spacing, kr.h);
+  if (Lanes::any((reach != 0.0f) & simd::liveLanes(n)))
+    share = ff_dfsph_wall_of(g.x, g.y, g.z, lo, hi, spacing, vol, kr.h, kr.inv_h, wg);
+  f8 sum[6];
+  for (int q = 0; q < 6; ++q) std::memcpy(&sum[q], sums + 8 * q, sizeof sum[q]);
+  const f8 a[3] = {sum[1], sum[2], sum[3]};
+  f8 rh, va[3], q;
+  const f8 alpha = ff_dfsph_factor_of(share, wg, vol, sum[0], a, sum[4], eps, &rh, va, &q);
+  simd::storeN(rho_hat, rh, n);
+  simd::storeN(o.alpha + b, alpha, n), simd::storeN(o.wall + b, share, n), simd::storeN(o.q + b, q, n);
+  simd::storeN(o.wgx + b, wg[0], n), simd::storeN(o.wgy + b, wg[1], n), simd::storeN(o.wgz + b, wg[2], n);
+  simd::storeN(o.vax + b, va[0], n), simd::storeN(o.vay + b, va[1], n), simd::storeN(o.vaz + b, va[2], n);
+}
+FF_SIMD_DISPATCH(factorParts)
+
 // What the sources of a solve read and write (DfsphSolver::sources).
 struct SourceArgs {
   const float *ux, *uy, *uz;                // the velocities the sources measure
@@ -92,9 +125,11 @@ struct SourceArgs {
 // rs = sum_j g (u_i - u_j).r_ij over the cached candidates (the grid walk's
 // terms in its order), then the rate and source per lane (ff_dfsph_rate_of,
 // ff_dfsph_density_source or ff_dfsph_divergence_source,
-// ff_dfsph_increment). Near a wall (ff_dfsph_wall_near_axis) a lane's
-// density source is ff_dfsph_density_source_at, one particle at a time.
-template <class>
+// ff_dfsph_increment). Where a lane is near a wall
+// (ff_dfsph_wall_near_axis) its density source is
+// ff_dfsph_density_source_wall, as in ff_dfsph_density_source_at, on the
+// group's 8 lanes.
+template <class Lanes>
 FF_SIMD_BODY void groupSourcesOf(const CpuFluid& f, const NeighbourCache& nc, size_t gi, uint32_t b,
                                  uint32_t e, const SourceArgs& a) {
   const FluidState& s = f.s;
@@ -127,27 +162,27 @@ FF_SIMD_BODY void groupSourcesOf(const CpuFluid& f, const NeighbourCache& nc, si
     return;
   }
   const f8 rho_hat = simd::loadN(&a.rho[b], n, 0.0f) * a.inv_rho0;
-  const f8 bs = ff_dfsph_density_source(rho_hat, rate, a.dt);
-  simd::storeN(&a.b[b], bs, n);
-  simd::storeN(&a.inc[b], ff_dfsph_increment(bs, alpha), n);
-  simd::storeN(&a.wpx[b], gx, n), simd::storeN(&a.wpy[b], gy, n), simd::storeN(&a.wpz[b], gz, n);
-  const f8 near = ff_dfsph_wall_near_axis(g.x, uxi, a.dt, a.lo[0], a.hi[0], a.H) +
-                  ff_dfsph_wall_near_axis(g.y, uyi, a.dt, a.lo[1], a.hi[1], a.H) +
-                  ff_dfsph_wall_near_axis(g.z, uzi, a.dt, a.lo[2], a.hi[2], a.H);
-  for (int l = 0; l < n; ++l) {
-    if (near[l] == 0.0f) continue;
+  f8 bs = ff_dfsph_density_source(rho_hat, rate, a.dt), al = alpha;
+  f8 wp[3] = {gx, gy, gz};
+  const f8 near_sum = ff_dfsph_wall_near_axis(g.x, uxi, a.dt, a.lo[0], a.hi[0], a.H) +
+                      ff_dfsph_wall_near_axis(g.y, uyi, a.dt, a.lo[1], a.hi[1], a.H) +
+                      ff_dfsph_wall_near_axis(g.z, uzi, a.dt, a.lo[2], a.hi[2], a.H);
+  const simd::i8 near = (near_sum != 0.0f) & simd::liveLanes(n);
+  if (Lanes::any(near)) {
     // The density after dt, with the walls' share at x + dt u, and the
     // walls' gradient and the factor there for this iteration's push.
-    const uint32_t i = b + uint32_t(l);
-    const float pos[3] = {x[i], y[i], z[i]}, u[3] = {ux[i], uy[i], uz[i]}, wg[3] = {gx[l], gy[l], gz[l]};
-    float g1[3], al;
-    const float bi =
-        ff_dfsph_density_source_at(i, pos, u, rho_hat[l], rate[l], a.dt, wg, alpha[l], a.wall, a.vax, a.vay,
-                                   a.vaz, a.q, a.eps, a.lo, a.hi, a.spacing, a.vol, a.H, a.inv_h, g1, &al);
-    a.b[i] = bi;
-    a.inc[i] = ff_dfsph_increment(bi, al);  // the next iteration's, if there is one
-    a.wpx[i] = g1[0], a.wpy[i] = g1[1], a.wpz[i] = g1[2];
+    const f8 va[3] = {simd::loadN(&a.vax[b], n, 0.0f), simd::loadN(&a.vay[b], n, 0.0f),
+                      simd::loadN(&a.vaz[b], n, 0.0f)};
+    f8 g1[3], a1;
+    const f8 b1 = ff_dfsph_density_source_wall(
+        g.x, g.y, g.z, uxi, uyi, uzi, rho_hat, rate, a.dt, wp, simd::loadN(&a.wall[b], n, 0.0f), va,
+        simd::loadN(&a.q[b], n, 0.0f), a.eps, a.lo, a.hi, a.spacing, a.vol, a.H, a.inv_h, g1, &a1);
+    bs = near ? b1 : bs, al = near ? a1 : al;
+    for (int c = 0; c < 3; ++c) wp[c] = near ? g1[c] : wp[c];
   }
+  simd::storeN(&a.b[b], bs, n);
+  simd::storeN(&a.inc[b], ff_dfsph_increment(bs, al), n);  // the next iteration's, if there is one
+  simd::storeN(&a.wpx[b], wp[0], n), simd::storeN(&a.wpy[b], wp[1], n), simd::storeN(&a.wpz[b], wp[2], n);
 }
 FF_SIMD_DISPATCH(groupSources)
 
@@ -208,26 +243,23 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   const float rho0 = p.rest_density, vol = vol_;
   float lo[3], hi[3];
   box(c, lo, hi);
-  const FluidState& s = f.s;
   const long groups = long(f.groups.size() / 2);
   const Clock::time_point t0 = Clock::now();
   const int threads = cache_.reset(size_t(groups), kr.h);
+  const FactorOut out{alpha_.data(), wgx_.data(), wgy_.data(), wgz_.data(), wall_.data(),
+                      vax_.data(),   vay_.data(), vaz_.data(), q_.data()};
   int bad = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
   for (long gi = 0; gi < groups; ++gi) {
     const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
     float sums[48];
     factorSums(f, size_t(gi), b, e, kr, sums, cache_);
+    float rho_hat[8];
+    factorParts(f, b, e, sums, lo, hi, vol_spacing_, kr, vol, eps, rho_hat, out);
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
-      const float pos[3] = {s.x[i], s.y[i], s.z[i]}, a[3] = {sums[8 + l], sums[16 + l], sums[24 + l]};
-      float rho_hat, wg[3], va[3];
-      alpha_[i] = ff_dfsph_factor_parts(pos, lo, hi, vol_spacing_, kr.h, kr.inv_h, vol, sums[l], a,
-                                        sums[32 + l], eps, &rho_hat, wg, &wall_[i], va, &q_[i]);
-      wgx_[i] = wg[0], wgy_[i] = wg[1], wgz_[i] = wg[2];
-      vax_[i] = va[0], vay_[i] = va[1], vaz_[i] = va[2];
-      f.rho[i] = rho0 * rho_hat;
-      const float share = rho_hat - vol * sums[l];  // the walls' share
+      f.rho[i] = rho0 * rho_hat[l];
+      const float share = rho_hat[l] - vol * sums[l];  // the walls' share
       bulk_[i] = uint8_t(ff_dfsph_bulk(sums[40 + l], share, full, kBulkShare));
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }

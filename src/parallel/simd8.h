@@ -64,6 +64,12 @@ template <class I, class F>
   return r;
 }
 
+// Lanes 0..n-1 set (all bits), the rest 0.
+inline i8 liveLanes(int n) {
+  const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  return lane < n;
+}
+
 inline bool any(i8 m) {
   unsigned long long w[4];
   std::memcpy(w, &m, sizeof w);

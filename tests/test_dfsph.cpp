@@ -80,6 +80,20 @@ TEST(DfsphKernel, WallFractionMatchesQuadratureAndSlopeItsDerivative) {
   }
 }
 
+// Uniform floats in [l, h) from a fixed seed (a linear congruential generator).
+struct Uniform {
+  unsigned seed;
+  float operator()(float l, float h) {
+    seed = seed * 1664525u + 1013904223u;
+    return l + (h - l) * float(seed >> 8) / float(1u << 24);
+  }
+};
+
+// Whether a and b are the same bits.
+bool same(float a, float b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
 TEST(DfsphKernel, WallGradientIsTheGradientOfTheWallShareInACorner) {
   const float H = 0.0126f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
   const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {0.1f, 0.1f, 0.1f};
@@ -111,12 +125,7 @@ TEST(DfsphKernel, DensitySourceAtAParticleIsTheWallsShareAtThePredictedPosition)
   const float H = 0.0833f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
   const float eps = ff_dfsph_eps(inv_h);
   const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f};
-  unsigned seed = 12345u;
-  auto uniform = [&seed](float l, float h) {
-    seed = seed * 1664525u + 1013904223u;
-    return l + (h - l) * float(seed >> 8) / float(1u << 24);
-  };
-  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  Uniform uniform{12345u};
   int near = 0, zero = 0;
   for (int t = 0; t < 4000; ++t) {
     const float pos[3] = {uniform(-0.01f, 0.15f), uniform(-0.01f, 0.6f), uniform(0.25f, 0.41f)};
@@ -197,12 +206,7 @@ TEST(DfsphKernel, WallShareOnEightLanesIsTheOneParticleFormBitForBit) {
   const float H = 0.0833f, inv_h = 1.0f / H, sp = 0.5f * H, vol = ff_dfsph_lattice_volume(sp, H);
   const float k = ff_cubic_coef(H), eps = ff_dfsph_eps(inv_h), dt = 0.004f;
   const float lo[3] = {0.0f, 0.0f, 0.0f}, hi[3] = {1.0f, 0.6f, 0.4f};
-  unsigned seed = 777u;
-  auto uniform = [&seed](float l, float h) {
-    seed = seed * 1664525u + 1013904223u;
-    return l + (h - l) * float(seed >> 8) / float(1u << 24);
-  };
-  auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  Uniform uniform{777u};
   int in_reach = 0, out = 0, near = 0;
   for (int t = 0; t < 2000; ++t) {
     f8 p[3], u[3], g0[3], va[3], s0, q, rho_hat, rate;

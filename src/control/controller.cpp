@@ -1,6 +1,9 @@
 #include "control/controller.h"
 
 #include <omp.h>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -85,6 +88,60 @@ FF_SIMD_BODY size_t pairCandidatesOf(const std::vector<uint32_t>& spans, const f
   return nh;
 }
 FF_SIMD_DISPATCH(pairCandidates)
+
+#if FF_SIMD_AVX2
+// Each lane of v twice: lanes 2l and 2l + 1 hold v[l].
+[[gnu::target("avx512f"), gnu::always_inline]] inline __m512 twice8(f8 v) {
+  return (__m512)__builtin_shufflevector(v, v, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7);
+}
+// p[0] in the even lanes, p[1] in the odd ones.
+[[gnu::target("avx512f"), gnu::always_inline]] inline __m512 pairOf(const float* p) {
+  double d;
+  std::memcpy(&d, p, sizeof d);
+  return _mm512_castpd_ps(_mm512_set1_pd(d));
+}
+// Lanes below r2 at the squared distance from (px, py, pz) to the lanes of (x, y, z).
+[[gnu::target("avx512f"), gnu::always_inline]] inline unsigned within16(__m512 px, __m512 py, __m512 pz,
+                                                                        __m512 x, __m512 y, __m512 z,
+                                                                        __m512 r2) {
+  const __m512 dx = _mm512_sub_ps(px, x), dy = _mm512_sub_ps(py, y), dz = _mm512_sub_ps(pz, z);
+  const __m512 d2 =
+      _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(dx, dx), _mm512_mul_ps(dy, dy)), _mm512_mul_ps(dz, dz));
+  return _mm512_cmp_ps_mask(d2, r2, _CMP_LT_OQ);
+}
+
+// pairCandidates in the 16 lanes of AVX-512: two candidates at once, the
+// group's particle l in lanes 2l (against candidate k) and 2l + 1 (against
+// k + 1), with the same operations per lane (so the same candidates).
+[[gnu::target("avx512f")]] size_t pairCandidatesWide(const std::vector<uint32_t>& spans, const float* x,
+                                                     const float* y, const float* z, uint32_t b, uint32_t e,
+                                                     const float* sx, const float* sy, const float* sz,
+                                                     float rc2, uint32_t* hit) {
+  const int n = int(e - b);
+  const __m512 xe = twice8(simd::loadN(x + b, n, kFar)), ye = twice8(simd::loadN(y + b, n, kFar)),
+               ze = twice8(simd::loadN(z + b, n, kFar));
+  const __m512 r2 = _mm512_set1_ps(rc2);
+  size_t nh = 0;
+  for (size_t s = 0; s < spans.size(); s += 2) {
+    uint32_t k = spans[s];
+    const uint32_t end = spans[s + 1];
+    for (; k + 1 < end; k += 2) {
+      const unsigned m = within16(pairOf(sx + k), pairOf(sy + k), pairOf(sz + k), xe, ye, ze, r2);
+      hit[nh] = k;
+      nh += (m & 0x5555u) ? 1 : 0;
+      hit[nh] = k + 1;
+      nh += (m & 0xaaaau) ? 1 : 0;
+    }
+    if (k < end) {
+      const unsigned m =
+          within16(_mm512_set1_ps(sx[k]), _mm512_set1_ps(sy[k]), _mm512_set1_ps(sz[k]), xe, ye, ze, r2);
+      hit[nh] = k;
+      nh += m ? 1 : 0;
+    }
+  }
+  return nh;
+}
+#endif
 
 // Control scale sums (eq. 5 and the feedback's mean velocity) of the control
 // particles hit[0 .. nh-1] (sorted positions in the control grid, ascending)
@@ -223,9 +280,12 @@ void Controller::findPairs(const SortedFluid& sf) {
   if (hit_bufs_.size() < size_t(threads)) hit_bufs_.resize(size_t(threads));
   // The control particles in chunks of their sorted positions (computeScale):
   // each group's pairs are cut where a chunk begins.
-  const size_t n = set_.size(), nch = std::min(n, 2 * size_t(threads));
+  const size_t n = set_.size(), nch = std::min({n, 2 * size_t(threads), size_t(64)});
   chunks_ = nch;
   hit_cut_.resize((nch + 1) * size_t(ngroups));
+  [[maybe_unused]] const bool wide = simd::hasAvx512();
+  uint32_t firsts[64];  // chunk c's first sorted position
+  for (size_t c = 0; c < nch; ++c) firsts[c] = uint32_t(c * n / nch);
 #pragma omp parallel
   {
     const size_t t = size_t(omp_get_thread_num());
@@ -237,18 +297,23 @@ void Controller::findPairs(const SortedFluid& sf) {
       const uint32_t b = groups[2 * size_t(g)], e = groups[2 * size_t(g) + 1];
       const size_t room = pairCandidateRoom(cp_grid_, sf.x, sf.y, sf.z, b, e, rc, spans);
       if (buf.size() < used + room) buf.resize(std::max(used + room, 2 * buf.size()));
-      const size_t nh = pairCandidates(spans, sf.x, sf.y, sf.z, b, e, sx_.data(), sy_.data(), sz_.data(), rc2,
-                                       buf.data() + used);
+      size_t nh;
+#if FF_SIMD_AVX2
+      if (wide)
+        nh = pairCandidatesWide(spans, sf.x, sf.y, sf.z, b, e, sx_.data(), sy_.data(), sz_.data(), rc2,
+                                buf.data() + used);
+      else
+#endif
+        nh = pairCandidates(spans, sf.x, sf.y, sf.z, b, e, sx_.data(), sy_.data(), sz_.data(), rc2,
+                            buf.data() + used);
       uint32_t* at = hit_at_.data() + 3 * size_t(g);
       at[0] = uint32_t(t), at[1] = uint32_t(used), at[2] = uint32_t(nh);
       uint32_t* cut = hit_cut_.data() + (nch + 1) * size_t(g);
       const uint32_t* h = buf.data() + used;
-      for (size_t c = 0; c <= nch; ++c) {
-        const uint32_t from = uint32_t(c * n / nch);
-        uint32_t below = 0;
-        for (size_t q = 0; q < nh; ++q) below += h[q] < from ? 1u : 0u;
-        cut[c] = below;
-      }
+      size_t c = 0;  // cut c: the first pair with a control particle at or after chunk c's first
+      for (size_t q = 0; q < nh; ++q)
+        while (c < nch && h[q] >= firsts[c]) cut[c++] = uint32_t(q);
+      while (c <= nch) cut[c++] = uint32_t(nh);
       used += nh;
     }
   }

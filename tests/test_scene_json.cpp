@@ -10,10 +10,12 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/param_table.h"
 #include "core/params.h"
+#include "core/warning.h"
 #include "scene/scene.h"
 #include "temp_dir.h"
 #include "test_meshes.h"
@@ -508,4 +510,35 @@ TEST(Params, EveryTableKeyIsDocumentedInTheSceneFormat) {
                 doc.find(quoted) != std::string::npos)
         << info.name();
   }
+}
+
+// A key a scene's params give that another parameter's mode overrides does
+// nothing (SimulationApi.AParameterActsWhereParamActsSaysSo runs it): it is
+// warned, naming the file, the key and the mode; a key that acts is not.
+TEST(Params, AKeyThatHasNoEffectIsWarned) {
+  std::vector<std::string> warnings;
+  const ff::WarningSink old = ff::setWarningSink([&](const std::string& m) { warnings.push_back(m); });
+  auto parse = [&](const std::string& preset, const std::string& control) {
+    warnings.clear();
+    ff::parseScene(R"({"preset": ")" + preset + R"(", "params": {"control": )" + control +
+                       R"(}, "fluid": [{"origin": [0, 0, 0], "dims": [2, 2, 2]}]})",
+                   "w.json", ".");
+    return warnings;
+  };
+  const std::vector<std::string> normalised = parse("water", R"({"attraction": 0.0001, "attraction_g": 9})");
+  ASSERT_EQ(normalised.size(), 1u);
+  EXPECT_EQ(normalised[0].rfind("w.json: params.control.attraction: has no effect while "
+                                "params.control.normalise is 1",
+                                0),
+            0u)
+      << normalised[0];
+  const std::vector<std::string> radius = parse("water", R"({"radius": 0.04})");
+  ASSERT_EQ(radius.size(), 1u);
+  EXPECT_NE(radius[0].find("params.control.radius: has no effect while params.control.radius_spacings > 0"),
+            std::string::npos)
+      << radius[0];
+  EXPECT_TRUE(parse("water", R"({"radius": 0.04, "radius_spacings": 0})").empty());
+  EXPECT_TRUE(parse("paper", R"({"attraction": 0.0001, "radius": 0.04})").empty());
+  ASSERT_EQ(parse("paper", R"({"velocity_rate": 2})").size(), 1u);
+  ff::setWarningSink(old);
 }

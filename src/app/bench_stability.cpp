@@ -34,15 +34,12 @@ double getValue(const ParamInfo& p, const Params& params) {
 // other mode; not a number that is 0 (off), which no factor changes.
 std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names, const Params& params) {
   std::vector<const ParamInfo*> out;
-  const bool normalised = params.control.normalise != 0;
   for (const ParamInfo& p : paramTable()) {
     const std::string g = p.group, k = p.key;
     const bool number = p.type == ParamInfo::Type::Real || p.type == ParamInfo::Type::Integer;
-    const bool in_spacings = params.control.radius_spacings > 0.0f;
     const bool in_fall_times = params.shape.time_step_fall > 0.0f;
-    const bool inactive = (g == "control" && normalised && (k == "attraction" || k == "velocity")) ||
-                          (!normalised && (k == "attraction_g" || k == "velocity_rate")) ||
-                          (g == "control" && k == (in_spacings ? "radius" : "radius_spacings")) ||
+    // radius_spacings at 0 (the radius in metres) is left by the zero rule below.
+    const bool inactive = !paramActs(p, params) ||
                           (g == "shape_matching" && k == (in_fall_times ? "time_step" : "time_step_fall"));
     // A number at 0 (off, e.g. the paper preset's blend and auto_count) stays 0 at every factor.
     const bool zero = number && !p.mode && getValue(p, params) == 0.0;

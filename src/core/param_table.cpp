@@ -180,11 +180,28 @@ void setRealParam(const ParamInfo& info, Params& p, float v) {
     *static_cast<float*>(f) = v;
 }
 
-bool stepSetByFallTime(const ParamInfo& info, const Params& p) {
+std::string whyNoEffect(const ParamInfo& info, const Params& p) {
+  if (std::string(info.group) != "control") return "";
+  const std::string k = info.key;
+  if ((k == "attraction" || k == "velocity" || k == "units") && p.control.normalise != 0)
+    return "while params.control.normalise is 1 (attraction_g and velocity_rate act instead)";
+  if ((k == "attraction_g" || k == "velocity_rate") && p.control.normalise == 0)
+    return "while params.control.normalise is 0 (attraction, velocity and units act instead)";
+  if (k == "radius" && p.control.radius_spacings > 0.0f)
+    return "while params.control.radius_spacings > 0 (it sets the radius at every target)";
+  return "";
+}
+
+bool paramActs(const ParamInfo& info, const Params& p) {
+  return whyNoEffect(info, p).empty();
+}
+
+bool setByAnother(const ParamInfo& info, const Params& p) {
   Params& q = const_cast<Params&>(p);  // the table's accessors only read here
   const void* f = info.field(q);
   return (f == static_cast<const void*>(&p.fluid.time_step) && p.fluid.time_step_fall > 0.0f) ||
-         (f == static_cast<const void*>(&p.shape.time_step) && p.shape.time_step_fall > 0.0f);
+         (f == static_cast<const void*>(&p.shape.time_step) && p.shape.time_step_fall > 0.0f) ||
+         (f == static_cast<const void*>(&p.control.radius) && p.control.radius_spacings > 0.0f);
 }
 
 }  // namespace ff

@@ -49,9 +49,20 @@ const std::vector<std::string>& paramGroups();
 // scene/params overlay and bench --stability write through this. A *_fall
 // written after its step (the table lists it later) turns it on again.
 void setRealParam(const ParamInfo& info, Params& p, float v);
-// Whether `info` is a step in seconds that its group's *_fall > 0 sets
-// (and would override): the scene writer leaves it out.
-bool stepSetByFallTime(const ParamInfo& info, const Params& p);
+// Whether the value of `info` acts on a run with parameters `p`: false for
+// one that another parameter's mode overrides: control.attraction, velocity
+// and units while control.normalise is 1 (attraction_g and velocity_rate
+// act instead), those two while it is 0, control.radius while
+// radius_spacings > 0 (which sets it at every target). The viewer's panel
+// shows the sliders that act; bench --stability sweeps them.
+bool paramActs(const ParamInfo& info, const Params& p);
+// Why `info` does not act ("while params.control.normalise is 1"), or ""
+// where it does: a scene's or script's params that give it are warned.
+std::string whyNoEffect(const ParamInfo& info, const Params& p);
+// Whether another parameter sets `info` at run time: a step in seconds that
+// its group's *_fall > 0 sets (and would override), the control radius that
+// radius_spacings > 0 sets. The scene writer leaves it out.
+bool setByAnother(const ParamInfo& info, const Params& p);
 
 // The most shape-matching steps one fluid step may make
 // (params.fluid.time_step / params.shape_matching.time_step).

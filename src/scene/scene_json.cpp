@@ -20,6 +20,7 @@
 #include "core/param_table.h"
 #include "core/resource_limits.h"
 #include "core/text_file.h"
+#include "core/warning.h"
 #include "scene/scene.h"
 
 namespace ff {
@@ -156,6 +157,7 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
   std::vector<const char*> groups;
   for (const std::string& g : paramGroups()) groups.push_back(g.c_str());
   r.object(j, base, groups);
+  std::vector<const ParamInfo*> given;
   for (const std::string& group : paramGroups()) {
     if (!j.contains(group)) continue;
     const std::string path = child(base, group);
@@ -165,6 +167,7 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
     const json& obj = r.object(j[group], path, keys);
     for (const ParamInfo& info : paramTable()) {
       if (group != info.group || !obj.contains(info.key)) continue;
+      given.push_back(&info);
       const json& v = obj[info.key];
       const std::string key = child(path, info.key);
       void* field = info.field(p);
@@ -194,6 +197,12 @@ void readParams(const Reader& r, const json& j, const std::string& base, Params&
         }
       }
     }
+  }
+  // A key given that another parameter's mode overrides does nothing: said once.
+  for (const ParamInfo* info : given) {
+    const std::string why = whyNoEffect(*info, p);
+    if (!why.empty())
+      warn(r.source + ": " + child(child(base, info->group), info->key) + ": has no effect " + why);
   }
 }
 

@@ -84,9 +84,10 @@ json paramsOverlay(const Params& p, const Params& preset) {
         break;
       }
     }
-    // A step that its *_fall sets is not written: it follows the scene (and
-    // given in seconds it would turn the *_fall off).
-    if (stepSetByFallTime(info, a)) continue;
+    // A value another parameter sets is not written: it follows the scene (a
+    // step given in seconds would turn its *_fall off; a radius in metres
+    // has no effect while radius_spacings is on).
+    if (setByAnother(info, a)) continue;
     if (!value.is_null()) out[info.group][info.key] = value;
   }
   return out;

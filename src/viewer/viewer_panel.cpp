@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/param_table.h"
 #include "render/scene_renderer.h"
 #include "viewer/viewer_ui.h"
 
@@ -209,6 +210,13 @@ bool intParam(const char* label, int& v, int lo, int hi, const char* help) {
   return changed;
 }
 
+// Whether GROUP.KEY acts with parameters p (paramActs).
+bool acts(const Params& p, const char* group, const char* key) {
+  for (const ParamInfo& info : paramTable())
+    if (std::string(info.group) == group && std::string(info.key) == key) return paramActs(info, p);
+  return true;
+}
+
 void paramsSection(ViewerUi& ui, ViewerSession& session) {
   // Show the session's values unless an edit is waiting to be fixed.
   if (ui.params_error.empty()) ui.edit = session.params();
@@ -238,20 +246,46 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
   }
   if (ImGui::TreeNodeEx("Control", ImGuiTreeNodeFlags_DefaultOpen)) {
     ControlParams& c = p.control;
-    changed |=
-        floatParam("control radius m", c.radius, 5e-3f, 0.1f, true, "influence radius of a control particle");
-    changed |= floatParam("attraction w_a", c.attraction, 0.0f, 1e-2f, true, "eq. 4 weight");
-    changed |= floatParam("velocity w_v", c.velocity, 0.0f, 1e-2f, true, "eq. 6 weight");
+    // The sliders of the parameters that act (paramActs): the radius in
+    // control spacings or in metres, the normalised pull or the paper's.
+    if (acts(p, "control", "radius"))
+      changed |= floatParam("control radius m", c.radius, 5e-3f, 0.1f, true,
+                            "influence radius of a control particle");
+    else
+      changed |= floatParam("radius spacings", c.radius_spacings, 0.5f, 10.0f, true,
+                            "control.radius_spacings: the influence radius in control particle spacings, set "
+                            "at every target");
+    bool normalised = c.normalise != 0;
+    if (ImGui::Checkbox("normalised pull", &normalised)) {
+      c.normalise = normalised ? 1 : 0;
+      changed = true;
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "control.normalise: eq. 4 and 6 normalised by the local control weight "
+          "(attraction_g, velocity_rate), or as the paper writes them (w_a, w_v, units)");
+    if (acts(p, "control", "attraction_g")) {
+      changed |= floatParam("attraction g", c.attraction_g, 0.0f, 50.0f, false,
+                            "control.attraction_g: the most attraction, in units of gravity");
+      changed |= floatParam("velocity rate", c.velocity_rate, 0.0f, 10.0f, false,
+                            "control.velocity_rate: the velocity force's rate, in units of sqrt(g / radius)");
+    } else {
+      changed |= floatParam("attraction w_a", c.attraction, 0.0f, 1e-2f, true, "eq. 4 weight");
+      changed |= floatParam("velocity w_v", c.velocity, 0.0f, 1e-2f, true, "eq. 6 weight");
+      int units = int(c.units);
+      const char* names[] = {"acceleration", "force_density", "force"};
+      if (ImGui::Combo("force units", &units, names, 3)) {
+        c.units = ControlForceUnits(units);
+        changed = true;
+      }
+    }
     changed |=
         floatParam("feedback", c.feedback, 0.0f, 1.0f, false, "fluid feedback on the control particles");
     changed |= floatParam("gravity compensation", c.gravity_compensation, 0.0f, 1.0f, false,
                           "share of gravity the control carries inside the target");
-    int units = int(c.units);
-    const char* names[] = {"acceleration", "force_density", "force"};
-    if (ImGui::Combo("force units", &units, names, 3)) {
-      c.units = ControlForceUnits(units);
-      changed = true;
-    }
+    changed |= floatParam("recapture", c.recapture, 0.0f, 10.0f, false,
+                          "control.recapture: fluid out of the control's reach flies back at this many "
+                          "sqrt(g radius) (0 = off)");
     ImGui::TreePop();
   }
   if (ImGui::TreeNodeEx("Shape matching", ImGuiTreeNodeFlags_DefaultOpen)) {

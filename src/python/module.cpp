@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -193,12 +194,14 @@ class PySimulation {
 
 class PyExporter {
  public:
-  PyExporter(const std::string& dir, const std::string& formats, double fps, long every_steps,
-             bool overwrite) {
+  PyExporter(const std::string& dir, const std::string& formats, const std::optional<double>& fps,
+             long every_steps, bool overwrite) {
+    // As the CLI's --fps and --export-every exclude each other (fps was ignored).
+    if (fps && every_steps > 0) throw Error("export: give fps or every_steps, not both");
     ff::ExportOptions o;
     o.dir = dir;
     o.formats = ff::parseExportFormats(formats, "formats");
-    o.fps = fps;
+    if (fps) o.fps = *fps;
     o.every_steps = every_steps;
     o.overwrite = overwrite;
     o.overwrite_option = "overwrite=True";
@@ -284,11 +287,12 @@ PYBIND11_MODULE(flowform, m) {
       "A Simulation resumed from a checkpoint file.");
 
   py::class_<PyExporter>(m, "Exporter")
-      .def(py::init<const std::string&, const std::string&, double, long, bool>(), py::arg("dir"),
-           py::arg("formats") = "vtk", py::arg("fps") = 30.0, py::arg("every_steps") = 0,
-           py::arg("overwrite") = false,
+      .def(py::init<const std::string&, const std::string&, const std::optional<double>&, long, bool>(),
+           py::arg("dir"), py::arg("formats") = "vtk", py::arg("fps") = py::none(),
+           py::arg("every_steps") = 0, py::arg("overwrite") = false,
            "Frames into `dir` (formats: a comma-separated list of vtk, bgeo, ply), as `flowform run "
-           "--export`.")
+           "--export`: fps frames per simulated second (default 30) or a frame every every_steps steps, not "
+           "both.")
       .def("write", &PyExporter::write, py::arg("sim"), "Writes the current state as the next frame.")
       .def("write_if_due", &PyExporter::writeIfDue, py::arg("sim"),
            "Writes a frame if one is due at the simulation's time; returns whether it did.")

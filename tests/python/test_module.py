@@ -205,6 +205,11 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(exporter.frames, 2)
         mesh = meshio.read(os.path.join(out, "fluid_00001.ply"))
         self.assertEqual(len(mesh.points), 1000)
+        # fps and every_steps exclude each other, as --fps and --export-every
+        # (fps was ignored before).
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Exporter(os.path.join(self.dir, "both"), fps=10, every_steps=2)
+        self.assertIn("fps or every_steps, not both", str(ctx.exception))
         # A folder holding another run's frames: refused, naming Python's keyword.
         with self.assertRaises(flowform.Error) as ctx:
             flowform.Exporter(out, formats="ply", every_steps=1).write(sim)

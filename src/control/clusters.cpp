@@ -51,48 +51,58 @@ std::vector<std::vector<uint32_t>> connectedParts(const std::vector<uint32_t>& m
 }  // namespace
 
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width, bool connected) {
+                   const std::vector<int>& vk, int stride, int half_width, bool connected, int coarse) {
   const size_t n = set.size();
-  // Candidate centres: lattice points (multiples of stride) within half_width of any particle.
-  std::unordered_map<int64_t, std::vector<uint32_t>> groups;
-  std::vector<int64_t> centre_keys;
-  std::vector<int> cxs, cys, czs;
-  for (size_t p = 0; p < n; ++p) {
-    const int64_t w = half_width, s = stride;
-    const int64_t lo[3] = {floorDiv(vi[p] - w + s - 1, s), floorDiv(vj[p] - w + s - 1, s),
-                           floorDiv(vk[p] - w + s - 1, s)};
-    const int64_t hi[3] = {floorDiv(vi[p] + w, s), floorDiv(vj[p] + w, s), floorDiv(vk[p] + w, s)};
-    for (int64_t c = lo[2]; c <= hi[2]; ++c)
-      for (int64_t b = lo[1]; b <= hi[1]; ++b)
-        for (int64_t a = lo[0]; a <= hi[0]; ++a) {
-          int64_t k = key(a, b, c);
-          auto it = groups.find(k);
-          if (it == groups.end()) {
-            it = groups.emplace(k, std::vector<uint32_t>()).first;
-            centre_keys.push_back(k);
-            cxs.push_back(int(a * s)), cys.push_back(int(b * s)), czs.push_back(int(c * s));
-          }
-          it->second.push_back(uint32_t(p));
-        }
-  }
-  // Keep clusters with at least 4 members, in deterministic (creation) order.
   std::vector<std::vector<uint32_t>> kept;
   std::vector<int> kx, ky, kz;
-  std::vector<int> covered(n, 0);
-  for (size_t c = 0; c < centre_keys.size(); ++c) {
-    auto& m = groups[centre_keys[c]];
-    std::vector<std::vector<uint32_t>> parts;
-    if (connected)
-      parts = connectedParts(m, vi, vj, vk);
-    else
-      parts.push_back(std::move(m));
-    for (auto& part : parts) {
-      if (part.size() < 4) continue;
-      for (uint32_t p : part) covered[p] = 1;
-      kept.push_back(std::move(part));
-      kx.push_back(cxs[c]), ky.push_back(cys[c]), kz.push_back(czs[c]);
+  std::vector<int> covered(n, 0);  // in a cluster of the fine level
+  // One level of clusters, centred every `stride` voxels, `half_width` wide.
+  auto level = [&](int stride, int half_width, bool fine) {
+    // Candidate centres: lattice points (multiples of stride) within half_width of any particle.
+    std::unordered_map<int64_t, std::vector<uint32_t>> groups;
+    std::vector<int64_t> centre_keys;
+    std::vector<int> cxs, cys, czs;
+    for (size_t p = 0; p < n; ++p) {
+      const int64_t w = half_width, s = stride;
+      const int64_t lo[3] = {floorDiv(vi[p] - w + s - 1, s), floorDiv(vj[p] - w + s - 1, s),
+                             floorDiv(vk[p] - w + s - 1, s)};
+      const int64_t hi[3] = {floorDiv(vi[p] + w, s), floorDiv(vj[p] + w, s), floorDiv(vk[p] + w, s)};
+      for (int64_t c = lo[2]; c <= hi[2]; ++c)
+        for (int64_t b = lo[1]; b <= hi[1]; ++b)
+          for (int64_t a = lo[0]; a <= hi[0]; ++a) {
+            int64_t k = key(a, b, c);
+            auto it = groups.find(k);
+            if (it == groups.end()) {
+              it = groups.emplace(k, std::vector<uint32_t>()).first;
+              centre_keys.push_back(k);
+              cxs.push_back(int(a * s)), cys.push_back(int(b * s)), czs.push_back(int(c * s));
+            }
+            it->second.push_back(uint32_t(p));
+          }
     }
-  }
+    // Keep clusters with at least 4 members, in deterministic (creation) order.
+    for (size_t c = 0; c < centre_keys.size(); ++c) {
+      auto& m = groups[centre_keys[c]];
+      std::vector<std::vector<uint32_t>> parts;
+      if (connected)
+        parts = connectedParts(m, vi, vj, vk);
+      else
+        parts.push_back(std::move(m));
+      for (auto& part : parts) {
+        if (part.size() < 4) continue;
+        if (fine)
+          for (uint32_t p : part) covered[p] = 1;
+        kept.push_back(std::move(part));
+        kx.push_back(cxs[c]), ky.push_back(cys[c]), kz.push_back(czs[c]);
+      }
+    }
+  };
+  level(stride, half_width, true);
+  // The coarse level (params.shape_matching.coarse_clusters): `coarse` times
+  // as wide and as far apart, so that a long thin part (a bar between two
+  // lumps) is matched as one piece with its ends and does not bend under the
+  // fluid it holds (docs/CONTROL_UNITS.md, "Coarse clusters").
+  if (coarse >= 2) level(stride * coarse, half_width * coarse, false);
   // A particle in no cluster joins the nearest kept cluster (or, with no
   // cluster at all, every particle forms one cluster together).
   if (kept.empty() && n > 0) {

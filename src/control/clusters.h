@@ -17,8 +17,12 @@ namespace ff {
 // cube that are not connected to each other inside it (voxels touching by a
 // face, edge or corner) form separate clusters, so that two limbs, or a limb
 // and the body, that pass through one cube are not matched as one rigid piece.
+// coarse >= 2 (params.shape_matching.coarse_clusters) adds a second level of
+// clusters, coarse times the stride and half_width, after the first (a
+// particle's goal is the mean over the clusters of both levels that hold it).
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width, bool connected = false);
+                   const std::vector<int>& vk, int stride, int half_width, bool connected = false,
+                   int coarse = 0);
 
 // Each cluster's centre of mass over the points (x, y, z)[p], summed in
 // double in member order (the rest centres of buildClusters, the blend's

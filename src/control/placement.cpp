@@ -162,7 +162,7 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
   const bool limbs = std::lround(double(extent) / kClusterSpanShare) > sm.cluster_half_width &&
                      thinRidgeVoxels(g, float(2 * sm.cluster_half_width + 1)) * kLimbLengthShare >= extent;
   const ClusterSize cs = clusterSize(sm, extent, limbs);
-  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on);
+  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on, sm.coarse_clusters);
   return set;
 }
 

@@ -161,6 +161,10 @@ const std::vector<ParamInfo>& paramTable() {
        "rest-shape blend of a run's first target, from where placement puts it, over blend_first "
        "sqrt(2 radius / g) (0 = off: the rest shape at once)",
        FF_FIELD(shape.blend_first)},
+      {"shape_matching", "coarse_clusters", T::Integer, 0, 16, false,
+       ">= 2: a second level of clusters this many times the stride and half-width, so that a long thin "
+       "part does not bend under its fluid; 0 or 1: one level",
+       FF_FIELD(shape.coarse_clusters)},
   };
   return table;
 }

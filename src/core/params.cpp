@@ -102,7 +102,7 @@ float ShapeMatchParams::firstBlendTime(float radius, const float g[3]) const {
 double ShapeMatchParams::clustersPerParticle() const {
   const double per_axis =
       std::floor(2.0 * double(cluster_half_width) / double(std::max(1, cluster_stride))) + 1.0;
-  return per_axis * per_axis * per_axis;
+  return per_axis * per_axis * per_axis * (coarse_clusters >= 2 ? 2.0 : 1.0);
 }
 
 const char* solverName(PressureSolverKind k) {

@@ -197,6 +197,11 @@ struct ShapeMatchParams {
   // (`blend`): a tall shape squashed over its fluid would form late. 0 = off
   // (the paper: the rest shape at once).
   float blend_first = 0.0f;
+  // Coarse clusters (docs/CONTROL_UNITS.md, "Coarse clusters"): k >= 2 adds
+  // a second level of clusters k times the stride and half-width, so that a
+  // long thin part does not bend under the fluid it holds; 0 or 1 (every
+  // preset): one level, as the paper.
+  int coarse_clusters = 0;
   // The first target's blend time (s) for control radius `radius` under gravity `g`.
   float firstBlendTime(float radius, const float g[3]) const;
 

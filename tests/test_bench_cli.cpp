@@ -239,7 +239,8 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
 // stability sweep switches instead of scaling. The test's own reading of
 // each integer parameter's doc (scenes/README.md): three pick a mode, the
 // rest count something (iterations, substeps, control particles, voxels),
-// and every integer of the table is one or the other. The default sweep on
+// and every integer of the table is one or the other (coarse_clusters counts
+// how many times wider the coarse clusters are). The default sweep on
 // both presets switches exactly the flagged set, each through all its other
 // values; a count, named explicitly, is scaled by the factors.
 TEST(BenchStability, ModesAreTheTablesFlaggedParametersAndNoCountIsSwitched) {
@@ -249,7 +250,8 @@ TEST(BenchStability, ModesAreTheTablesFlaggedParametersAndNoCountIsSwitched) {
                                         "control.auto_count",
                                         "shape_matching.cluster_stride",
                                         "shape_matching.cluster_half_width",
-                                        "shape_matching.rotation_iterations"};
+                                        "shape_matching.rotation_iterations",
+                                        "shape_matching.coarse_clusters"};
   std::set<std::string> flagged;
   for (const ff::ParamInfo& p : ff::paramTable()) {
     const std::string name = std::string(p.group) + "." + p.key;

@@ -44,6 +44,16 @@ double rigidResidual(const ff::ControlSet& s) {
   return std::sqrt((fit - dst).squaredNorm() / double(n));
 }
 
+// Runs `steps` shape-matching steps of the set s in c with the default
+// params and no fluid (feedback 0.1 then damps towards rest).
+void shapeMatchAlone(ff::Controller& c, const ff::ControlSet& s, int steps) {
+  ff::ControlParams cp;
+  cp.feedback = 0.1f;
+  c.setParams(cp, ff::ShapeMatchParams());
+  c.reset(s);
+  for (int i = 0; i < steps; ++i) c.shapeMatchStep();
+}
+
 TEST(ShapeMatching, ClustersOverlapAndCoverEveryParticle) {
   std::vector<int> vi, vj, vk;
   ff::ControlSet s = blockSet(8, 6, 5, 0.01f, vi, vj, vk);
@@ -70,12 +80,7 @@ TEST(ShapeMatching, PullsADeformedSetBackToItsRigidShape) {
   ASSERT_GT(before, 0.005);
 
   ff::Controller c;
-  ff::ControlParams cp;
-  cp.feedback = 0.1f;  // with no fluid around, feedback damps towards rest
-  ff::ShapeMatchParams sm;
-  c.setParams(cp, sm);
-  c.reset(s);
-  for (int i = 0; i < 400; ++i) c.shapeMatchStep();
+  shapeMatchAlone(c, s, 400);
   const double after = rigidResidual(c.set());
   EXPECT_LT(after, 0.01 * before) << "before " << before << " after " << after;
   // The centre of mass is not moved by shape matching.
@@ -103,12 +108,7 @@ TEST(ShapeMatching, CoarseClustersStraightenABentBar) {
     }
     *before = rigidResidual(s);
     ff::Controller c;
-    ff::ControlParams cp;
-    cp.feedback = 0.1f;  // with no fluid around, feedback damps towards rest
-    ff::ShapeMatchParams sm;
-    c.setParams(cp, sm);
-    c.reset(s);
-    for (int i = 0; i < 200; ++i) c.shapeMatchStep();
+    shapeMatchAlone(c, s, 200);
     return rigidResidual(c.set());
   };
   double before1 = 0.0, before3 = 0.0;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "control/control_set.h"
 #include "core/error.h"
 #include "temp_dir.h"
 #include "test_scenes.h"
@@ -233,6 +234,29 @@ TEST(ViewerSession, ResetWarnsWhenTheKeptRegionHoldsNoFluidAtTimeZero) {
 // otherwise sets again at every target and edit; the same params giving
 // time_step_fall too keep the fall-time step. The fall time sqrt(r / |g|) is
 // computed here in double.
+// Clusters are built when control particles are placed: a new coarse level
+// (shape_matching.coarse_clusters) re-places them at once, as a new cluster
+// size does. Its clusters are k times as wide, so the set gains clusters.
+TEST(ViewerSession, CoarseClustersTakeEffectAtOnce) {
+  ViewerSession s(tinyScene(), cpu());
+  s.step();
+  auto clusters = [&s] {
+    ff::ControlSet set;
+    ff::ControlFields fields;
+    s.sim().backend().readControl(set, fields);
+    return set.clusters.start.empty() ? size_t(0) : set.clusters.start.size() - 1;
+  };
+  const size_t one_level = clusters();
+  ASSERT_GT(one_level, 0u);
+  ff::Params p = s.params();
+  p.shape.coarse_clusters = 2;
+  s.setParams(p);
+  EXPECT_GT(clusters(), one_level);
+  p.shape.coarse_clusters = 0;
+  s.setParams(p);
+  EXPECT_EQ(clusters(), one_level);
+}
+
 TEST(ViewerSession, AShapeStepInSecondsTurnsTheFallTimeMultipleOff) {
   ff::SceneDesc scene = tinyScene();
   scene.params.shape.time_step_fall = 0.09f;

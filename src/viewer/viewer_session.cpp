@@ -80,9 +80,10 @@ void ViewerSession::setParams(const Params& params) {
   const ShapeMatchParams old = sim_->scene().params.shape;
   sim_->setParams(params);
   // Clusters are built when control particles are placed: re-place them so
-  // that a new cluster size takes effect now.
+  // that a new cluster size or coarse level takes effect now.
   if (sim_->target() && (old.cluster_stride != params.shape.cluster_stride ||
-                         old.cluster_half_width != params.shape.cluster_half_width))
+                         old.cluster_half_width != params.shape.cluster_half_width ||
+                         old.coarse_clusters != params.shape.coarse_clusters))
     sim_->setTarget(active_);
 }
 

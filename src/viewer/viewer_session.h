@@ -41,7 +41,8 @@ class ViewerSession {
   const RegionDesc& region() const { return sim_->scene().region; }
 
   // Throws ff::Error naming the field (validateParams); the previous ones stay.
-  // A new cluster size re-places the control particles of the current target.
+  // A new cluster size or coarse level re-places the control particles of the
+  // current target.
   void setParams(const Params& params);
   const Params& params() const { return sim_->scene().params; }
 

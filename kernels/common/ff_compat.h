@@ -92,12 +92,18 @@ inline float ff_fmax_c(float a, float b) {
 #define FF_FMAX(a, b) ff_fmax_c((float)(a), (float)(b))
 #define FF_ISFINITE(a) std::isfinite((float)(a))
 #define FF_ZERO_OF(T) (T{})
+/* Always inlined: an instance on 8-lane vectors is compiled for the default
+ * target, and its caller (an FF_SIMD_BODY) for AVX2 or AVX-512. Called out of
+ * line, a 32-byte vector argument would pass between the two ABIs (GCC's
+ * -Wpsabi note): the sanitizer build, which inlined less, wrote through a
+ * garbage pointer there (UBSan: store to misaligned address 0x6 in
+ * ff_dfsph_wall_of, CI on ab20df9). */
 #define FF_GENERIC(def, name) \
   template <class FF_T>       \
-  def(FF_T, name)
+  [[gnu::always_inline]] def(FF_T, name)
 #define FF_GENERIC_S(def, name) \
   template <class FF_T>         \
-  def(FF_T, name, )
+  [[gnu::always_inline]] def(FF_T, name, )
 #endif
 /* A formula that calls other FF_GENERIC formulas is a def(T, name, S),
  * stamped out by FF_GENERIC_S: S is the suffix of its instance (nothing, or

@@ -515,15 +515,20 @@ TEST(Params, EveryTableKeyIsDocumentedInTheSceneFormat) {
 // A key a scene's params give that another parameter's mode overrides does
 // nothing (SimulationApi.AParameterActsWhereParamActsSaysSo runs it): it is
 // warned, naming the file, the key and the mode; a key that acts is not.
-TEST(Params, AKeyThatHasNoEffectIsWarned) {
+// The warnings that reading a scene "w.json" on `preset` with `params` (JSON) gives.
+static std::vector<std::string> paramWarnings(const std::string& preset, const std::string& params) {
   std::vector<std::string> warnings;
   const ff::WarningSink old = ff::setWarningSink([&](const std::string& m) { warnings.push_back(m); });
+  ff::parseScene(R"({"preset": ")" + preset + R"(", "params": )" + params +
+                     R"(, "fluid": [{"origin": [0, 0, 0], "dims": [2, 2, 2]}]})",
+                 "w.json", ".");
+  ff::setWarningSink(old);
+  return warnings;
+}
+
+TEST(Params, AKeyThatHasNoEffectIsWarned) {
   auto parse = [&](const std::string& preset, const std::string& control) {
-    warnings.clear();
-    ff::parseScene(R"({"preset": ")" + preset + R"(", "params": {"control": )" + control +
-                       R"(}, "fluid": [{"origin": [0, 0, 0], "dims": [2, 2, 2]}]})",
-                   "w.json", ".");
-    return warnings;
+    return paramWarnings(preset, R"({"control": )" + control + "}");
   };
   const std::vector<std::string> normalised = parse("water", R"({"attraction": 0.0001, "attraction_g": 9})");
   ASSERT_EQ(normalised.size(), 1u);
@@ -540,5 +545,40 @@ TEST(Params, AKeyThatHasNoEffectIsWarned) {
   EXPECT_TRUE(parse("water", R"({"radius": 0.04, "radius_spacings": 0})").empty());
   EXPECT_TRUE(parse("paper", R"({"attraction": 0.0001, "radius": 0.04})").empty());
   ASSERT_EQ(parse("paper", R"({"velocity_rate": 2})").size(), 1u);
-  ff::setWarningSink(old);
+}
+
+// A step in seconds given with its *_fall > 0 in the same params: the fall
+// time sets the step (the table lists *_fall later), so the seconds do
+// nothing and are warned, as the other keys that another overrides (one
+// table, overrideRules). Given alone, a step in seconds turns its *_fall
+// off and acts: no warning.
+TEST(Params, AStepInSecondsThatItsFallTimeOverridesIsWarned) {
+  auto parse = [](const std::string& params) { return paramWarnings("water", params); };
+  const std::vector<std::string> sm =
+      parse(R"({"shape_matching": {"time_step": 0.003, "time_step_fall": 0.05}})");
+  ASSERT_EQ(sm.size(), 1u);
+  EXPECT_NE(sm[0].find("w.json: params.shape_matching.time_step: has no effect while "
+                       "params.shape_matching.time_step_fall > 0"),
+            std::string::npos)
+      << sm[0];
+  const std::vector<std::string> fluid = parse(R"({"fluid": {"time_step": 0.003, "time_step_fall": 0.1}})");
+  ASSERT_EQ(fluid.size(), 1u);
+  EXPECT_NE(fluid[0].find("params.fluid.time_step: has no effect while params.fluid.time_step_fall > 0"),
+            std::string::npos)
+      << fluid[0];
+  EXPECT_TRUE(parse(R"({"fluid": {"time_step": 0.003}, "shape_matching": {"time_step": 0.003}})").empty());
+}
+
+// Each override rule names keys of the parameter table, of the same group.
+TEST(Params, EveryOverrideRuleNamesParametersOfTheTable) {
+  auto find = [](const char* group, const char* key) {
+    for (const ff::ParamInfo& i : ff::paramTable())
+      if (std::string(i.group) == group && std::string(i.key) == key) return true;
+    return false;
+  };
+  ASSERT_FALSE(ff::overrideRules().empty());
+  for (const ff::OverrideRule& r : ff::overrideRules()) {
+    EXPECT_TRUE(find(r.group, r.key)) << r.group << "." << r.key;
+    EXPECT_TRUE(find(r.group, r.by)) << r.group << "." << r.by;
+  }
 }

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/param_table.h"
@@ -55,13 +58,17 @@ TEST(SimulationApi, AShapeMatchingStepInSecondsInASceneIsTheStepTaken) {
 }
 
 // paramActs (what the viewer's panel shows and bench --stability sweeps)
-// against runs: each control parameter it names, doubled, changes the
-// metrics of a few steps where it says the parameter acts, and leaves them
-// the same bit for bit where it says another parameter's mode overrides it,
-// on both presets (paper: the paper's pull, the radius in metres; water:
-// normalised, the radius in control spacings).
+// against runs: each number parameter that a rule of overrideRules names,
+// doubled, changes the metrics of a few steps where it says the parameter
+// acts, and leaves them the same bit for bit where it says another
+// parameter overrides it, on both presets (paper: the paper's pull, the
+// radius in metres, steps in seconds; water: normalised, the radius in
+// control spacings, steps in fall times).
 TEST(SimulationApi, AParameterActsWhereParamActsSaysSo) {
-  const char* keys[] = {"attraction", "velocity", "attraction_g", "velocity_rate", "radius"};
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const ff::OverrideRule& r : ff::overrideRules())
+    if (std::string(r.key) != "units") keys.emplace_back(r.group, r.key);  // units: not a number
+  ASSERT_GE(keys.size(), 7u);
   for (const char* preset : {"paper", "water"}) {
     ff::SceneDesc s = smallScene();
     s.preset = preset;
@@ -76,17 +83,16 @@ TEST(SimulationApi, AParameterActsWhereParamActsSaysSo) {
                                  sim.metrics().coverage};
     };
     const std::vector<double> base = run(s.params);
-    for (const char* key : keys) {
-      const auto it =
-          std::find_if(ff::paramTable().begin(), ff::paramTable().end(), [&](const ff::ParamInfo& i) {
-            return std::string(i.group) == "control" && std::string(i.key) == key;
-          });
+    for (const auto& [group, key] : keys) {
+      const auto it = std::find_if(ff::paramTable().begin(), ff::paramTable().end(),
+                                   [&](const ff::ParamInfo& i) { return i.group == group && i.key == key; });
       ASSERT_NE(it, ff::paramTable().end()) << key;
+      ASSERT_EQ(it->type, ff::ParamInfo::Type::Real) << key;
       ff::Params p = s.params;
       float& v = *static_cast<float*>(it->field(p));
       v *= 2.0f;
       const bool changed = run(p) != base;
-      EXPECT_EQ(changed, ff::paramActs(*it, s.params)) << preset << " control." << key;
+      EXPECT_EQ(changed, ff::paramActs(*it, s.params)) << preset << " " << group << "." << key;
     }
   }
 }

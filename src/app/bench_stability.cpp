@@ -37,10 +37,8 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
   for (const ParamInfo& p : paramTable()) {
     const std::string g = p.group, k = p.key;
     const bool number = p.type == ParamInfo::Type::Real || p.type == ParamInfo::Type::Integer;
-    const bool in_fall_times = params.shape.time_step_fall > 0.0f;
-    // radius_spacings at 0 (the radius in metres) is left by the zero rule below.
-    const bool inactive = !paramActs(p, params) ||
-                          (g == "shape_matching" && k == (in_fall_times ? "time_step" : "time_step_fall"));
+    // overrideRules: radius_spacings or time_step_fall at 0 (off) is left by the zero rule below.
+    const bool inactive = !paramActs(p, params);
     // A number at 0 (off, e.g. the paper preset's blend and auto_count) stays 0 at every factor.
     const bool zero = number && !p.mode && getValue(p, params) == 0.0;
     if (names.empty() && number && !inactive && !zero && (g == "control" || g == "shape_matching"))

@@ -9,6 +9,7 @@
 #include "core/param_table.h"
 
 #include <cstdio>
+#include <cstring>
 
 namespace ff {
 
@@ -184,28 +185,56 @@ void setRealParam(const ParamInfo& info, Params& p, float v) {
     *static_cast<float*>(f) = v;
 }
 
+const std::vector<OverrideRule>& overrideRules() {
+  static const std::vector<OverrideRule> rules = {
+      // group, key, by, sets, condition, when, note
+      {"fluid", "time_step", "time_step_fall", true, "> 0",
+       [](const Params& p) { return p.fluid.time_step_fall > 0.0f; },
+       "it sets the frame step from the smoothing radius"},
+      {"control", "radius", "radius_spacings", true, "> 0",
+       [](const Params& p) { return p.control.radius_spacings > 0.0f; },
+       "it sets the radius at every target"},
+      {"control", "attraction", "normalise", false, "is 1",
+       [](const Params& p) { return p.control.normalise != 0; },
+       "attraction_g and velocity_rate act instead"},
+      {"control", "velocity", "normalise", false, "is 1",
+       [](const Params& p) { return p.control.normalise != 0; },
+       "attraction_g and velocity_rate act instead"},
+      {"control", "units", "normalise", false, "is 1",
+       [](const Params& p) { return p.control.normalise != 0; },
+       "attraction_g and velocity_rate act instead"},
+      {"control", "attraction_g", "normalise", false, "is 0",
+       [](const Params& p) { return p.control.normalise == 0; },
+       "attraction, velocity and units act instead"},
+      {"control", "velocity_rate", "normalise", false, "is 0",
+       [](const Params& p) { return p.control.normalise == 0; },
+       "attraction, velocity and units act instead"},
+      {"shape_matching", "time_step", "time_step_fall", true, "> 0",
+       [](const Params& p) { return p.shape.time_step_fall > 0.0f; },
+       "it sets the step from the control radius at every target"},
+  };
+  return rules;
+}
+
+const OverrideRule* overriddenBy(const ParamInfo& info, const Params& p) {
+  for (const OverrideRule& r : overrideRules())
+    if (std::strcmp(r.group, info.group) == 0 && std::strcmp(r.key, info.key) == 0 && r.when(p)) return &r;
+  return nullptr;
+}
+
 std::string whyNoEffect(const ParamInfo& info, const Params& p) {
-  if (std::string(info.group) != "control") return "";
-  const std::string k = info.key;
-  if ((k == "attraction" || k == "velocity" || k == "units") && p.control.normalise != 0)
-    return "while params.control.normalise is 1 (attraction_g and velocity_rate act instead)";
-  if ((k == "attraction_g" || k == "velocity_rate") && p.control.normalise == 0)
-    return "while params.control.normalise is 0 (attraction, velocity and units act instead)";
-  if (k == "radius" && p.control.radius_spacings > 0.0f)
-    return "while params.control.radius_spacings > 0 (it sets the radius at every target)";
-  return "";
+  const OverrideRule* r = overriddenBy(info, p);
+  if (!r) return "";
+  return std::string("while params.") + r->group + "." + r->by + " " + r->condition + " (" + r->note + ")";
 }
 
 bool paramActs(const ParamInfo& info, const Params& p) {
-  return whyNoEffect(info, p).empty();
+  return overriddenBy(info, p) == nullptr;
 }
 
 bool setByAnother(const ParamInfo& info, const Params& p) {
-  Params& q = const_cast<Params&>(p);  // the table's accessors only read here
-  const void* f = info.field(q);
-  return (f == static_cast<const void*>(&p.fluid.time_step) && p.fluid.time_step_fall > 0.0f) ||
-         (f == static_cast<const void*>(&p.shape.time_step) && p.shape.time_step_fall > 0.0f) ||
-         (f == static_cast<const void*>(&p.control.radius) && p.control.radius_spacings > 0.0f);
+  const OverrideRule* r = overriddenBy(info, p);
+  return r != nullptr && r->sets;
 }
 
 }  // namespace ff

@@ -49,19 +49,35 @@ const std::vector<std::string>& paramGroups();
 // scene/params overlay and bench --stability write through this. A *_fall
 // written after its step (the table lists it later) turns it on again.
 void setRealParam(const ParamInfo& info, Params& p, float v);
-// Whether the value of `info` acts on a run with parameters `p`: false for
-// one that another parameter's mode overrides: control.attraction, velocity
-// and units while control.normalise is 1 (attraction_g and velocity_rate
-// act instead), those two while it is 0, control.radius while
-// radius_spacings > 0 (which sets it at every target). The viewer's panel
-// shows the sliders that act; bench --stability sweeps them.
+// One rule of which parameter overrides which: params.GROUP.KEY has no
+// effect while params.GROUP.BY meets `condition` (`when`). With `sets`, BY
+// sets KEY's value at run time (a step from its fall time, the radius from
+// radius_spacings), so the value a Params holds there is derived, not given;
+// otherwise BY's mode leaves KEY unused (its value stays the user's). Every
+// reader of "is this key overridden" goes through this one table: the scene
+// reader's warning (and so a script's params and Python's set_params), the
+// scene writer, the viewer's panel and bench --stability.
+struct OverrideRule {
+  const char* group;      // "control"
+  const char* key;        // "attraction"
+  const char* by;         // the key of the same group that overrides it: "normalise"
+  bool sets;              // whether `by` sets key's value (else its mode leaves key unused)
+  const char* condition;  // when, in words: "is 1", "> 0"
+  bool (*when)(const Params&);
+  const char* note;  // what acts instead: "attraction_g and velocity_rate act instead"
+};
+const std::vector<OverrideRule>& overrideRules();
+// The rule under which another parameter overrides `info` in `p`, or nullptr.
+const OverrideRule* overriddenBy(const ParamInfo& info, const Params& p);
+// Whether the value of `info` acts on a run with parameters `p` (no rule
+// overrides it). The viewer's panel shows the sliders that act;
+// bench --stability sweeps them.
 bool paramActs(const ParamInfo& info, const Params& p);
-// Why `info` does not act ("while params.control.normalise is 1"), or ""
-// where it does: a scene's or script's params that give it are warned.
+// Why `info` does not act ("while params.control.normalise is 1 (...)"), or
+// "" where it does: a scene's or script's params that give it are warned.
 std::string whyNoEffect(const ParamInfo& info, const Params& p);
-// Whether another parameter sets `info` at run time: a step in seconds that
-// its group's *_fall > 0 sets (and would override), the control radius that
-// radius_spacings > 0 sets. The scene writer leaves it out.
+// Whether another parameter sets `info`'s value at run time (a rule with
+// `sets`): the scene writer leaves it out, so the scene keeps following it.
 bool setByAnother(const ParamInfo& info, const Params& p);
 
 // The most shape-matching steps one fluid step may make

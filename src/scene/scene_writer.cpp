@@ -84,9 +84,11 @@ json paramsOverlay(const Params& p, const Params& preset) {
         break;
       }
     }
-    // A value another parameter sets is not written: it follows the scene (a
-    // step given in seconds would turn its *_fall off; a radius in metres
-    // has no effect while radius_spacings is on).
+    // A value another parameter sets (overrideRules' `sets`) is not written:
+    // it follows the scene (a step given in seconds would turn its *_fall
+    // off; a radius in metres has no effect while radius_spacings is on).
+    // A value a mode leaves unused (attraction while normalise is 1) is the
+    // user's and is written.
     if (setByAnother(info, a)) continue;
     if (!value.is_null()) out[info.group][info.key] = value;
   }

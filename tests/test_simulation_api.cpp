@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/control_set.h"
 #include "core/error.h"
 #include "core/param_table.h"
 #include "cpu/backend_cpu.h"
@@ -95,6 +96,50 @@ TEST(SimulationApi, AParameterActsWhereParamActsSaysSo) {
       EXPECT_EQ(changed, ff::paramActs(*it, s.params)) << preset << " " << group << "." << key;
     }
   }
+}
+
+// Clusters are built when the control particles are placed. A change of the
+// fields that build them (ShapeMatchParams::sameClusters: the stride, the
+// half-width, the coarse level) through Simulation::setParams, as Python's
+// set_params and a script's params action make it, takes effect at once:
+// the run then has the clusters a run that started with those params has
+// (the clusters are centred on the target's voxels, whatever the fluid).
+// Other shape-matching fields keep the clusters as they are. Before, only
+// the viewer re-placed them; elsewhere they waited for the next target.
+TEST(SimulationApi, AClusterChangeTakesEffectAtOnce) {
+  ff::SceneDesc s = smallScene();
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 400)});
+  auto clusters = [](ff::Simulation& sim) {
+    ff::ControlSet set;
+    ff::ControlFields fields;
+    sim.backend().readControl(set, fields);
+    return set.clusters.start.empty() ? size_t(0) : set.clusters.start.size() - 1;
+  };
+  auto fresh = [&](const ff::Params& p) {
+    ff::SceneDesc t = s;
+    t.params = p;
+    ff::Simulation sim(t, std::make_unique<ff::CpuBackend>(1));
+    return clusters(sim);
+  };
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(1));
+  sim.step();
+  const size_t before = clusters(sim);
+  ASSERT_EQ(before, fresh(s.params));
+  ff::Params p = sim.scene().params;
+  p.shape.stiffness = 0.4f;  // not a cluster field: the clusters stay
+  sim.setParams(p);
+  EXPECT_EQ(clusters(sim), before);
+  p.shape.cluster_stride = 1;
+  sim.setParams(p);
+  const size_t finer = clusters(sim);
+  EXPECT_GT(finer, before);
+  EXPECT_EQ(finer, fresh(p));
+  p.shape.coarse_clusters = 3;
+  sim.setParams(p);
+  EXPECT_GT(clusters(sim), finer);
+  EXPECT_EQ(clusters(sim), fresh(p));
+  sim.step();
+  EXPECT_EQ(clusters(sim), fresh(p));
 }
 
 TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {

@@ -204,6 +204,15 @@ struct ShapeMatchParams {
   int coarse_clusters = 0;
   // The first target's blend time (s) for control radius `radius` under gravity `g`.
   float firstBlendTime(float radius, const float g[3]) const;
+  // Whether `o` builds the same clusters: the fields read when the clusters
+  // are built, as the control particles are placed (cluster_stride,
+  // cluster_half_width, coarse_clusters). A change of any of them re-places
+  // the control particles at once (Simulation::setParams), so that it does
+  // not wait for the next target. A new cluster field is added here.
+  bool sameClusters(const ShapeMatchParams& o) const {
+    return cluster_stride == o.cluster_stride && cluster_half_width == o.cluster_half_width &&
+           coarse_clusters == o.coarse_clusters;
+  }
 
   // The most clusters one control particle belongs to: the lattice points
   // (multiples of the stride) within half_width voxels, per axis

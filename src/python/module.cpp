@@ -248,7 +248,8 @@ PYBIND11_MODULE(flowform, m) {
       .def("set_region", &PySimulation::setRegion, py::arg("region"),
            "The controlled region in scene syntax: 'all', {'box': ...} or {'sphere': ...}.")
       .def("set_params", &PySimulation::setParams, py::arg("params"),
-           "Changes parameters now: a dict in the scene's 'params' syntax (only the keys given).")
+           "Changes parameters now: a dict in the scene's 'params' syntax (only the keys given). A new "
+           "cluster stride, half-width or coarse level re-places the control particles at once.")
       .def("fluid", &PySimulation::fluid, "The fluid: position and velocity (n, 3) float32, id (n,) uint32.")
       .def("control", &PySimulation::control,
            "The control particles: position, velocity, rest_position (m, 3) float32, s (m,) float32.")

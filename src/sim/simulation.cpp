@@ -382,9 +382,13 @@ void Simulation::setRegion(const RegionDesc& region) {
 void Simulation::setParams(const Params& params) {
   validateParams(params, "parameters");
   if (target_) checkClusterMemory(params.shape, target_->reference.size(), "parameters");
+  const bool same_clusters = scene_.params.shape.sameClusters(params.shape);
   scene_.params = withControlRadius(params, target_ ? target_->grid.voxel : 0.0f);
   scene_.params.fluid.setFrameStep();
   backend_->setParams(scene_.params);
+  // Clusters are built when control particles are placed: re-placed, so
+  // that a new cluster size or coarse level takes effect now.
+  if (target_ && !same_clusters) makeTarget(target_spec_, false);
 }
 
 Params Simulation::withControlRadius(Params params, float voxel) {

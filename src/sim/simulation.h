@@ -38,7 +38,9 @@ class Simulation {
   void clearTarget();
   // Changes the controlled region; the current target is regenerated in it.
   void setRegion(const RegionDesc& region);
-  // Changes parameters live.
+  // Changes parameters live. A change of the clusters
+  // (ShapeMatchParams::sameClusters) re-places the control particles over the
+  // current fluid, as a change to the same target does.
   void setParams(const Params& params);
 
   const SceneDesc& scene() const { return scene_; }

@@ -77,14 +77,7 @@ void ViewerSession::setRegion(const RegionDesc& region) {
 
 void ViewerSession::setParams(const Params& params) {
   validateParams(params, "");
-  const ShapeMatchParams old = sim_->scene().params.shape;
-  sim_->setParams(params);
-  // Clusters are built when control particles are placed: re-place them so
-  // that a new cluster size or coarse level takes effect now.
-  if (sim_->target() && (old.cluster_stride != params.shape.cluster_stride ||
-                         old.cluster_half_width != params.shape.cluster_half_width ||
-                         old.coarse_clusters != params.shape.coarse_clusters))
-    sim_->setTarget(active_);
+  sim_->setParams(params);  // a new cluster size re-places the control particles (sameClusters)
 }
 
 SceneDesc ViewerSession::currentScene() const {

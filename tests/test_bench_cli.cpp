@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -18,6 +19,9 @@
 #include "cli_run.h"
 #include "core/param_table.h"
 #include "core/params.h"
+#include "cpu/backend_cpu.h"
+#include "scene/scene_json.h"
+#include "sim/simulation.h"
 #include "test_scenes.h"
 
 namespace {
@@ -233,6 +237,42 @@ TEST(BenchCli, StabilitySweepScalesEachParameterInTurn) {
                          "' --stability-params control.units");
   EXPECT_EQ(bad.code, 1) << bad.out;
   EXPECT_NE(bad.out.find("--stability-params: 'control.units'"), std::string::npos) << bad.out;
+}
+
+// On the water preset the shape-matching step is set at every target by its
+// fall time, time_step_fall sqrt(r / |g|) (r the control radius; here
+// time_step_fall 0.2), and the preset's time_step (0.005 s) is not the step
+// taken. Named in the sweep,
+// shape_matching.time_step is scaled from the step the run took, computed
+// here; before, the sweep scaled 0.005 s. control.radius, which
+// radius_spacings sets whatever it is given, is said to have no effect and
+// is not run.
+TEST(BenchCli, AStepThatItsFallTimeSetsIsSweptFromTheStepTaken) {
+  const fftest::TempDir d("bench_stability_water");
+  const fs::path scene = d / "s.json";
+  std::ofstream(scene) << fftest::blockSceneJson(
+      "tiny", 0.2, 0.07, 0.07, 8,
+      "\"preset\": \"water\", \"target\": \"sphere\", "
+      "\"params\": {\"shape_matching\": {\"time_step_fall\": 0.2}}");
+  const ff::Simulation sim(ff::loadScene(scene.string()), std::make_unique<ff::CpuBackend>(1));
+  const ff::Params& p = sim.scene().params;
+  ASSERT_GT(p.shape.time_step_fall, 0.0f);
+  const double g = std::sqrt(double(p.fluid.gravity[0]) * p.fluid.gravity[0] +
+                             double(p.fluid.gravity[1]) * p.fluid.gravity[1] +
+                             double(p.fluid.gravity[2]) * p.fluid.gravity[2]);
+  const double step = double(p.shape.time_step_fall) * std::sqrt(double(p.control.radius) / g);
+  ASSERT_GT(std::fabs(step - 0.005), 1e-3);  // the test tells the two apart
+  auto r = runFlowform("bench --stability --backend cpu --threads 2 --stability-scene '" + scene.string() +
+                       "' --stability-seconds 0.008 --stability-factors 0.5 "
+                       "--stability-params shape_matching.time_step,control.radius");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string row = "| shape_matching.time_step | 0.5 | ";
+  const size_t at = r.out.find(row);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double swept = std::stod(r.out.substr(at + row.size()));
+  EXPECT_NEAR(swept, 0.5 * step, 1e-5 * step) << r.out;
+  EXPECT_NE(r.out.find("| control.radius | 0.5 | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| no effect while params.control.radius_spacings > 0"), std::string::npos) << r.out;
 }
 
 // The modes of the param table (ParamInfo::mode) are the parameters the

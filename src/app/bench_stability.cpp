@@ -20,8 +20,8 @@ std::string shortName(const ParamInfo& p) {
   return std::string(p.group) + "." + p.key;
 }
 
-double getValue(const ParamInfo& p, const Params& params) {
-  void* f = p.field(const_cast<Params&>(params));  // the table's accessors only read here
+double getValue(const ParamInfo& p, Params params) {
+  void* f = p.field(params);
   return p.type == ParamInfo::Type::Integer ? double(*static_cast<int*>(f)) : double(*static_cast<float*>(f));
 }
 
@@ -79,11 +79,16 @@ std::string factor(const StabilityRun& r, const char* prefix = "") {
   return f;
 }
 
-StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double seconds, double explode_speed) {
+// One run of `seconds`; `at_start`, where given, gets the parameters the run
+// took at its start: the frame step, control radius and shape-matching step
+// that time_step_fall, radius_spacings and shape_matching.time_step_fall set.
+StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double seconds, double explode_speed,
+                    Params* at_start = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   StabilityRun r;
   std::string note;
   Simulation sim(scene, makeBackend(b.kind, b.device, b.threads, &note));
+  if (at_start) *at_start = sim.scene().params;
   const long steps = std::max(1L, std::lround(seconds / double(sim.scene().params.fluid.time_step)));
   for (long s = 0; s < steps; ++s) {
     try {
@@ -144,25 +149,35 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   auto report = [&](const StabilityRun& r) {
     std::fprintf(stderr,
                  "bench stability: %-34s %-9s = %-10g %s, %ld clamps, max speed %.2f m/s, iou %.3f, %.0f s\n",
-                 r.param.c_str(), factor(r, "x").c_str(), r.value, r.exploded ? "EXPLODED" : "stable",
-                 r.clamps, r.max_speed, r.final_iou, r.wall_s);
+                 r.param.c_str(), factor(r, "x").c_str(), r.value,
+                 r.exploded ? "EXPLODED" : (r.nan.empty() ? "stable" : r.nan.c_str()), r.clamps, r.max_speed,
+                 r.final_iou, r.wall_s);
   };
-  StabilityRun base = runOne(scene, b, o.seconds, vx);
+  // Each parameter is scaled from the value the unscaled run took: a step or
+  // radius that another parameter sets (overrideRules) from the one it set
+  // (on water, shape_matching.time_step from its fall time), not from the
+  // scene's value that it overrides.
+  Params taken;
+  StabilityRun base = runOne(scene, b, o.seconds, vx, &taken);
   base.param = "(none)";
   report(base);
   runs.push_back(base);
   for (const StabilityPlan& q : plan) {
     const ParamInfo* p = q.param;
-    const double v0 = getValue(*p, scene.params);
+    const double v0 = getValue(*p, taken);
     for (double f : q.factors) {
       SceneDesc s = scene;
       bool clipped = false;
       const double v =
           q.mode ? setScaled(*p, s.params, f, 1.0, clipped) : setScaled(*p, s.params, v0, f, clipped);
       StabilityRun r;
+      const std::string why = whyNoEffect(*p, s.params);
       try {
         validateParams(s.params, "bench --stability");
-        r = runOne(s, b, o.seconds, vx);
+        if (why.empty())
+          r = runOne(s, b, o.seconds, vx);
+        else  // a named parameter that another overrides: its runs would all be the unscaled run
+          r.nan = "no effect " + why;
       } catch (const Error& e) {  // a combination validateParams refuses (e.g. the shape clock)
         r.nan = std::string("refused: ") + e.what();
       }

@@ -113,16 +113,16 @@ class PySimulation {
 
   void step() { sim_->step(); }
 
-  // Runs `steps` steps, or up to simulated time `until`, or for `seconds`
-  // more; returns the metrics of every step as arrays. Ctrl-C stops it
-  // between steps (KeyboardInterrupt).
+  // Runs `steps` steps, or for `seconds` more, or until the simulated time
+  // reaches `until`; returns the metrics of every step as arrays. Ctrl-C
+  // stops it between steps (KeyboardInterrupt).
   py::dict run(long steps, double seconds, double until) {
     const double dt = sim_->scene().params.fluid.time_step;
     const int given = (steps > 0) + (seconds > 0.0) + (until > 0.0);
     if (given != 1) throw Error("run: give exactly one of steps, seconds or until (each > 0)");
     long n = steps;
     if (seconds > 0.0) n = ff::runSteps(seconds, dt, "run: seconds");
-    if (until > 0.0) n = std::max(0L, ff::runSteps(until, dt, "run: until") - sim_->stepCount());
+    if (until > 0.0) n = stepsUntil(until, dt);
     if (double(n) > ff::kMaxRunSteps)
       throw Error("run: steps: " + std::to_string(n) + " steps are over the limit of 1e+08 steps");
     std::vector<std::vector<double>> cols(ff::kMetricColumns.size());
@@ -139,6 +139,20 @@ class PySimulation {
     py::dict out;
     for (size_t k = 0; k < cols.size(); ++k) out[ff::kMetricColumns[k]] = column(cols[k]);
     return out;
+  }
+
+  // The fewest steps after which the simulated time reaches `until`: 0 where
+  // it already has, else one more step where `until` falls between two
+  // steps, so that time >= until after the run, less than a step past it.
+  // Counted from the current time, not the step count (the step may have
+  // changed, set_params), and a time within 1e-6 of `until` (relative) has
+  // reached it: the step is a float, and 4 steps of 0.005 s end at
+  // 0.0199999996 s.
+  long stepsUntil(double until, double dt) const {
+    ff::checkRunLength(until, dt, "run: until");
+    const double tol = 1e-6 * until;
+    const double left = until - sim_->time();
+    return left <= tol ? 0L : ff::runSteps(left - tol, dt, "run: until");
   }
 
   py::dict metrics() const {
@@ -239,9 +253,12 @@ PYBIND11_MODULE(flowform, m) {
            "A run of a scene: a file name, a dict in scene syntax (scenes/README.md), or None for the "
            "built-in default scene. backend: cpu, opencl or auto.")
       .def("step", &PySimulation::step, "One fluid time step.")
-      .def("run", &PySimulation::run, py::arg("steps") = 0, py::arg("seconds") = 0.0, py::arg("until") = 0.0,
-           "Runs `steps` steps, `seconds` more simulated seconds, or `until` a simulated time; returns each "
-           "step's metrics as a dict of NumPy arrays (the columns of `flowform run --metrics`).")
+      .def(
+          "run", &PySimulation::run, py::arg("steps") = 0, py::arg("seconds") = 0.0, py::arg("until") = 0.0,
+          "Runs `steps` steps, `seconds` more simulated seconds, or until the simulated time reaches `until` "
+          "(no step if it has; else the fewest steps that reach it, so `time` ends at or less than one step "
+          "past it); returns each step's metrics as a dict of NumPy arrays (the columns of `flowform run "
+          "--metrics`).")
       .def("set_target", &PySimulation::setTarget, py::arg("target"),
            "A target in scene syntax ('sphere', 'bunny.obj', {'shape': 'box', ...}); None switches control "
            "off.")

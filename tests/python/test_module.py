@@ -170,6 +170,28 @@ class ModuleTest(unittest.TestCase):
             flowform.Simulation(SCENE, backend="cpu", threads=100000)
         self.assertIn("threads: must be in [0, 1024]", str(ctx.exception))
 
+    def test_run_until_stops_where_the_time_reaches_until(self):
+        # run(until=T): no step where sim.time >= T already, else the fewest
+        # steps after which sim.time >= T (less than one step past it),
+        # counted from sim.time (before: from step_count * the current
+        # step, wrong once set_params changed the step).
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        dt = float(np.float32(0.004))  # the paper preset's step, a float
+        self.assertEqual(len(sim.run(until=0.01)["step"]), 3)  # 0.008 < 0.01 <= 0.012
+        self.assertEqual(len(sim.run(until=0.011)["step"]), 0)  # reached: nothing to run
+        self.assertEqual(len(sim.run(until=0.012)["step"]), 0)
+        self.assertEqual(len(sim.run(until=0.0121)["step"]), 1)
+        self.assertAlmostEqual(sim.time, 4 * dt, delta=1e-12)
+        sim.set_params({"fluid": {"time_step": 0.002}})
+        t = sim.time
+        self.assertEqual(len(sim.run(until=t + 0.004)["step"]), 2)
+        self.assertAlmostEqual(sim.time, t + 2 * float(np.float32(0.002)), delta=1e-12)
+        # 0.005 as a float is 0.004999999888: four steps end at 0.0199999996 s,
+        # which has reached 0.02 (before: five steps, to 0.025).
+        scene = dict(SCENE, params={"fluid": {"time_step": 0.005}})
+        five = flowform.Simulation(scene, backend="cpu", threads=2)
+        self.assertEqual(len(five.run(until=0.02)["step"]), 4)
+
     def test_backend_and_device_errors_name_the_keywords(self):
         # Python's keywords backend= and device=, not the CLI's --backend and --device.
         cases = [

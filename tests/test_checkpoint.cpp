@@ -197,6 +197,35 @@ TEST_F(CheckpointFile, TruncatedAndForeignFilesAreRefused) {
   EXPECT_NE(e.find("not a flowform checkpoint"), std::string::npos) << e;
 }
 
+// A folder given as the checkpoint's file name (".", a folder, "out/") is
+// named as such, for writing and for loading, and nothing is left behind
+// (before, "." said "Device or resource busy" and left "..part" in the
+// working folder; a folder said "Is a directory" or "not a flowform checkpoint").
+TEST_F(CheckpointFile, AFolderGivenAsTheFileIsNamed) {
+  Simulation sim(ff::parseScene(kScene, "ckpt.json", ""), std::make_unique<ff::CpuBackend>(2));
+  const std::string folder = dir.path().string();
+  for (const std::string& path : {std::string("."), folder, folder + "/", folder + "/new/"}) {
+    try {
+      ff::writeCheckpoint(path, sim);
+      ADD_FAILURE() << path << ": written";
+    } catch (const ff::Error& e) {
+      EXPECT_EQ(std::string(e.what()), path +
+                                           ": cannot write the checkpoint: this is a folder; give a file "
+                                           "name (e.g. run.ffck)");
+    }
+  }
+  EXPECT_FALSE(std::filesystem::exists("..part"));
+  EXPECT_FALSE(std::filesystem::exists(folder + ".part"));
+  try {
+    ff::loadCheckpoint(folder, std::make_unique<ff::CpuBackend>(2));
+    ADD_FAILURE() << "loaded";
+  } catch (const ff::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(folder + ": cannot open the checkpoint: this is a folder"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(CheckpointFile, CliNamesTheBadCheckpoint) {
   std::string b = bytes;
   b[b.size() - 1] ^= 0x01;

@@ -34,6 +34,14 @@ uint64_t fnv1a(const char* p, size_t n) {
   return h;
 }
 
+// Whether `path` is an existing folder or ends in a separator (".", "out/"):
+// given as a checkpoint file, the folder is named as such (renaming onto "."
+// said "Device or resource busy").
+bool namesAFolder(const std::string& path) {
+  std::error_code ec;
+  return (!path.empty() && path.back() == '/') || std::filesystem::is_directory(path, ec);
+}
+
 }  // namespace
 
 void writeCheckpoint(const std::string& path, const Simulation& sim) {
@@ -48,6 +56,8 @@ void writeCheckpoint(const std::string& path, const Simulation& sim) {
   head.pod(uint64_t(payload.size()));
   head.pod(fnv1a(payload.data(), payload.size()));
 
+  if (namesAFolder(path))
+    throw Error(path + ": cannot write the checkpoint: this is a folder; give a file name (e.g. run.ffck)");
   const std::string tmp = path + ".part";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw Error(path + ": cannot write the checkpoint: " + std::strerror(errno));
@@ -68,6 +78,8 @@ void writeCheckpoint(const std::string& path, const Simulation& sim) {
 }
 
 std::unique_ptr<Simulation> loadCheckpoint(const std::string& path, std::unique_ptr<Backend> backend) {
+  if (namesAFolder(path))
+    throw Error(path + ": cannot open the checkpoint: this is a folder; give a checkpoint file (.ffck)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open the checkpoint: " + std::strerror(errno));
   char head[kHeaderBytes];

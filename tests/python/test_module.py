@@ -192,6 +192,16 @@ class ModuleTest(unittest.TestCase):
         five = flowform.Simulation(scene, backend="cpu", threads=2)
         self.assertEqual(len(five.run(until=0.02)["step"]), 4)
 
+    def test_a_folder_given_as_the_checkpoint_file_is_named(self):
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        for path in (".", self.dir):
+            with self.assertRaises(flowform.Error) as ctx:
+                sim.save_checkpoint(path)
+            self.assertIn(path + ": cannot write the checkpoint: this is a folder", str(ctx.exception))
+            with self.assertRaises(flowform.Error) as ctx:
+                flowform.resume(path, threads=2)
+            self.assertIn(path + ": cannot open the checkpoint: this is a folder", str(ctx.exception))
+
     def test_backend_and_device_errors_name_the_keywords(self):
         # Python's keywords backend= and device=, not the CLI's --backend and --device.
         cases = [

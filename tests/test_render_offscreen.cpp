@@ -312,6 +312,8 @@ TEST(RenderCli, BadInputIsRefusedWithTheReason) {
         Case{"--frames 1 --camera 10,20" + out, "--camera"},
         Case{"--frames 1 --camera a,b,c" + out, "--camera"},
         Case{"--frames 1 --camera 0,95,1" + out, "pitch"}, Case{"--frames 1 --mode voxels" + out, "--mode"},
+        // screen_space (a script's name for fluid) passes --mode: the camera is refused.
+        Case{"--frames 1 --mode screen_space --camera 10,20" + out, "--camera"},
         Case{"--frames 1 --out /proc/flowform_no/x", "/proc/flowform_no/x"},
         Case{"--frames 1 --width 161 --video v.mp4" + out, "even width"},
         Case{"--frames 2 --every 0" + out, "--every"}, Case{"--frames 1 --start -1" + out, "--start"},

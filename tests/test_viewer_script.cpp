@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "temp_dir.h"
@@ -26,6 +27,22 @@ std::string errorOf(const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// A script's render mode takes the names of `flowform render --mode`:
+// "fluid" (the screen-space surface) and "particles", and the scripts' old
+// name "screen_space" for "fluid" (before, a script refused "fluid" and the
+// CLI refused "screen_space"; RenderCli.BadInputIsRefusedWithTheReason
+// checks the CLI).
+TEST(ViewerScript, RenderModeTakesTheNamesOfTheRenderCommand) {
+  for (const auto& [name, particles] :
+       {std::pair<const char*, bool>{"fluid", false}, {"screen_space", false}, {"particles", true}}) {
+    const Script s = ff::viewer::parseScript(
+        std::string(R"({"actions": [{"at": 0, "render": {"mode": ")") + name + R"("}}]})", "demo.json", ".");
+    ASSERT_EQ(s.actions.size(), 1u);
+    ASSERT_TRUE(s.actions[0].render.particles.has_value()) << name;
+    EXPECT_EQ(*s.actions[0].render.particles, particles) << name;
+  }
 }
 
 TEST(ViewerScript, ValidFileGivesTheActionsInOrder) {
@@ -170,7 +187,7 @@ TEST(ViewerScript, EveryBadInputNamesTheFileAndTheField) {
       {R"({"actions": [{"at": 0, "params": {"solver": {}}}]})",
        "demo.json: actions[0].params.solver: unknown key"},
       {R"({"actions": [{"at": 0, "render": {"mode": "wireframe"}}]})",
-       "demo.json: actions[0].render.mode: must be \"screen_space\" or \"particles\""},
+       "demo.json: actions[0].render.mode: must be \"fluid\" (or \"screen_space\") or \"particles\""},
       {R"({"actions": [{"at": 0, "render": {"ghost": 1}}]})",
        "demo.json: actions[0].render.ghost: must be true or false"},
       {R"({"actions": [{"at": 0, "panel": "off"}]})", "demo.json: actions[0].panel: must be true or false"},

@@ -166,8 +166,8 @@ int renderScene(const RenderCmdOptions& o) {
   checkThreadCount(o.threads, "--threads");
   if (o.smoothing_given && (o.smoothing < 0 || o.smoothing > 64))
     throw Error("--smoothing: must be between 0 and 64 iterations (got " + std::to_string(o.smoothing) + ")");
-  if (o.mode != "fluid" && o.mode != "particles")
-    throw Error("--mode: '" + o.mode + "' is not one of fluid, particles");
+  if (!render::fluidModeByName(o.mode))
+    throw Error("--mode: '" + o.mode + "' is not one of fluid (or screen_space), particles");
   render::OrbitCamera camera;
   bool camera_target = false;  // checked now, applied once the scene is known
   if (!o.camera.empty()) camera_target = parseCamera(o.camera, camera);
@@ -217,7 +217,7 @@ int renderScene(const RenderCmdOptions& o) {
     if (camera_target) camera.target = chosen.target;
   }
   render::RenderOptions ro;
-  ro.mode = o.mode == "particles" ? render::FluidMode::Particles : render::FluidMode::ScreenSpace;
+  ro.mode = *render::fluidModeByName(o.mode);
   ro.show_control = o.control;
   ro.show_ghost = o.ghost;
   ro.show_region = !o.no_region;
@@ -348,7 +348,9 @@ std::function<int()> addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "cpu", "opencl"}));
   cmd->add_option("--device", o->device, "OpenCL device number, as `flowform devices` lists them");
   addKernelsOption(cmd);
-  cmd->add_option("--mode", o->mode, "fluid (screen-space liquid surface) or particles (plain spheres)")
+  cmd->add_option("--mode", o->mode,
+                  "fluid (screen-space liquid surface; also screen_space, as in viewer scripts) or particles "
+                  "(plain spheres)")
       ->capture_default_str();
   cmd->add_flag("--control", o->control,
                 "Show the control particles, coloured by s_i (green filled .. red empty)");

@@ -10,11 +10,10 @@
 #include <string>
 
 #include "render/camera.h"
+#include "render/fluid_mode.h"
 #include "render/frame_data.h"
 
 namespace ff::render {
-
-enum class FluidMode { ScreenSpace, Particles };
 
 // Overlay colours (rgb, alpha), also shown in the viewer's legend.
 inline constexpr float kRegionColor[4] = {1.0f, 0.55f, 0.10f, 1.0f};  // the controlled region's wireframe

@@ -9,9 +9,11 @@
 #include <cstring>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 
 #include "core/error.h"
 #include "core/text_file.h"
+#include "render/fluid_mode.h"
 #include "scene/scene_json.h"
 
 namespace ff::viewer {
@@ -80,12 +82,10 @@ RenderAction readRender(const Reader& r, const json& j, const std::string& path)
   RenderAction a;
   if (j.contains("mode")) {
     const std::string m = r.string(j["mode"], child(path, "mode"));
-    if (m == "particles")
-      a.particles = true;
-    else if (m == "screen_space")
-      a.particles = false;
-    else
-      r.fail(child(path, "mode"), "must be \"screen_space\" or \"particles\" (got '" + m + "')");
+    const std::optional<render::FluidMode> mode = render::fluidModeByName(m);
+    if (!mode)
+      r.fail(child(path, "mode"), std::string("must be ") + render::kFluidModeNames + " (got '" + m + "')");
+    a.particles = *mode == render::FluidMode::Particles;
   }
   if (j.contains("control")) a.control = r.boolean(j["control"], child(path, "control"));
   if (j.contains("ghost")) a.ghost = r.boolean(j["ghost"], child(path, "ghost"));

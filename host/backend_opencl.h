@@ -51,8 +51,7 @@ class OpenClBackend : public Backend {
   void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
-  using Backend::computeMetrics;
-  StepMetrics computeMetrics(bool with_shape) override;
+  StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
   void setProfiling(bool on) override;
   std::vector<StageTime> takeStageMs() override;

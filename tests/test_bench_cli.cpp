@@ -277,14 +277,15 @@ TEST(BenchCli, AStepThatItsFallTimeSetsIsSweptFromTheStepTaken) {
 
 // The modes of the param table (ParamInfo::mode) are the parameters the
 // stability sweep switches instead of scaling. The test's own reading of
-// each integer parameter's doc (scenes/README.md): three pick a mode, the
+// each integer parameter's doc (scenes/README.md): four pick a mode, the
 // rest count something (iterations, substeps, control particles, voxels),
 // and every integer of the table is one or the other (coarse_clusters counts
 // how many times wider the coarse clusters are). The default sweep on
 // both presets switches exactly the flagged set, each through all its other
 // values; a count, named explicitly, is scaled by the factors.
 TEST(BenchStability, ModesAreTheTablesFlaggedParametersAndNoCountIsSwitched) {
-  const std::set<std::string> modes = {"control.normalise", "control.adaptive", "shape_matching.anchor"};
+  const std::set<std::string> modes = {"control.normalise", "control.adaptive", "shape_matching.anchor",
+                                       "shape_matching.coarse_bars"};
   const std::set<std::string> counts = {"fluid.max_iterations",
                                         "fluid.max_substeps",
                                         "control.auto_count",

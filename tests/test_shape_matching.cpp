@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "control/clusters.h"
 #include "control/controller.h"
 #include "control/shape_matching.h"
+#include "target/local_thickness.h"
 
 namespace {
 
@@ -118,6 +120,140 @@ TEST(ShapeMatching, CoarseClustersStraightenABentBar) {
   EXPECT_GT(one, 0.5 * before1);
   EXPECT_LT(coarse, 0.3 * one) << "bend left: one level " << one << " m, with coarse clusters " << coarse
                                << " m, of " << before1 << " m";
+}
+
+// Two lumps joined by a bar, with a limb on one of them (voxel boxes, `m`
+// voxels per unit): cubes of 8 m at x [2, 10) m and [34, 42) m, a bar 2 m
+// thick from one to the other (24 m long), a limb 2 m thick standing 12 m
+// up from the first cube, free at its top.
+struct LumpsBarLimb {
+  ff::VoxelGrid g;
+  explicit LumpsBarLimb(int m) {
+    g.voxel = 0.01f / float(m), g.nx = 44 * m, g.ny = 24 * m, g.nz = 12 * m;
+    g.inside.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0);
+    auto box = [&](int x0, int x1, int y0, int y1, int z0, int z1) {
+      for (int k = z0 * m; k < z1 * m; ++k)
+        for (int j = y0 * m; j < y1 * m; ++j)
+          for (int i = x0 * m; i < x1 * m; ++i) g.inside[g.index(i, j, k)] = 1;
+    };
+    box(2, 10, 2, 10, 2, 10), box(34, 42, 2, 10, 2, 10);  // the lumps
+    box(10, 34, 5, 7, 5, 7);                              // the bar
+    box(5, 7, 10, 22, 5, 7);                              // the limb
+  }
+  // The part of the voxel at (x, y, z) units.
+  uint8_t partAt(const std::vector<uint8_t>& parts, float x, float y, float z, int m) const {
+    return parts[g.index(int(x * float(m)), int(y * float(m)), int(z * float(m)))];
+  }
+};
+
+// shapeParts finds the two cubes as lumps, the bar between them as a bar and
+// the limb as a limb, by construction; the same at twice the resolution (it
+// reads depths relative to the shape's own).
+TEST(ShapeParts, TwoLumpsABarAndALimb) {
+  for (int m : {1, 2}) {
+    const LumpsBarLimb s(m);
+    const std::vector<uint8_t> parts = ff::shapeParts(s.g, 5.0f * float(m));
+    EXPECT_EQ(s.partAt(parts, 6, 6, 6, m), ff::kPartLump) << m;
+    EXPECT_EQ(s.partAt(parts, 38, 6, 6, m), ff::kPartLump) << m;
+    for (float x : {14.0f, 22.0f, 30.0f})
+      EXPECT_EQ(s.partAt(parts, x, 6, 6, m), ff::kPartBar) << m << " " << x;
+    for (float y : {14.0f, 21.0f}) EXPECT_EQ(s.partAt(parts, 6, y, 6, m), ff::kPartLimb) << m << " " << y;
+    EXPECT_EQ(s.partAt(parts, 0.5f, 0.5f, 0.5f, m), ff::kPartOutside);
+  }
+  // One cube with the limb and a stub of the bar: no second lump, no bar.
+  LumpsBarLimb one(1);
+  for (size_t q = 0; q < one.g.inside.size(); ++q)
+    if (int(q % size_t(one.g.nx)) >= 20) one.g.inside[q] = 0;
+  const std::vector<uint8_t> parts = ff::shapeParts(one.g, 5.0f);
+  EXPECT_EQ(std::count(parts.begin(), parts.end(), ff::kPartBar), 0);
+  EXPECT_EQ(one.partAt(parts, 14, 6, 6, 1), ff::kPartLimb);
+}
+
+// Coarse clusters on bars (shape_matching.coarse_bars): the shape above, its
+// bar bent into a parabola sagging 3 cm and its limb swung 30 degrees about
+// its root, with no fluid. With the coarse level over the whole shape the
+// limb is held in clusters with the body, and the body swings it back; on
+// bars alone the limb keeps only the fine clusters and moves as with one
+// level, while the bar straightens as with the whole-shape coarse level.
+TEST(ShapeMatching, CoarseClustersOnBarsStraightenTheBarAndLeaveTheLimb) {
+  const LumpsBarLimb shape(1);
+  const ff::VoxelGrid& g = shape.g;
+  const std::vector<uint8_t> vparts = ff::shapeParts(g, 5.0f);
+  std::vector<int> vi, vj, vk;
+  std::vector<uint8_t> parts;
+  ff::ControlSet s0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        if (g.inside[g.index(i, j, k)]) {
+          const ff::Vec3 c = g.center(i, j, k);
+          s0.x0.push_back(c.x()), s0.y0.push_back(c.y()), s0.z0.push_back(c.z());
+          vi.push_back(i), vj.push_back(j), vk.push_back(k), parts.push_back(vparts[g.index(i, j, k)]);
+        }
+  const size_t n = s0.x0.size();
+  s0.vx.assign(n, 0), s0.vy.assign(n, 0), s0.vz.assign(n, 0);
+  double c[3];
+  ff::centreOfMass(s0.x0, s0.y0, s0.z0, c);
+  s0.rest_cx = float(c[0]), s0.rest_cy = float(c[1]), s0.rest_cz = float(c[2]);
+  // The pose: the bar sags, the limb swings 30 degrees about (0.06, 0.10).
+  s0.x = s0.x0, s0.y = s0.y0, s0.z = s0.z0;
+  const float a = 0.5236f;
+  std::vector<size_t> bar, limb;
+  for (size_t p = 0; p < n; ++p) {
+    if (parts[p] == ff::kPartBar) {
+      bar.push_back(p);
+      const float u = (s0.x0[p] - 0.22f) / 0.12f;
+      s0.y[p] = s0.y0[p] - 0.03f * (1.0f - u * u);
+    } else if (parts[p] == ff::kPartLimb && s0.y0[p] > 0.10f) {
+      limb.push_back(p);
+      const float dx = s0.x0[p] - 0.06f, dy = s0.y0[p] - 0.10f;
+      s0.x[p] = 0.06f + std::cos(a) * dx + std::sin(a) * dy,
+      s0.y[p] = 0.10f - std::sin(a) * dx + std::cos(a) * dy;
+    }
+  }
+  ASSERT_GT(bar.size(), 50u);
+  ASSERT_GT(limb.size(), 30u);
+  // After 0.25 s: the bar's bend (its RMS distance from the line between its
+  // ends' rest offsets, taken as the residual of its own best rigid fit) and
+  // the limb tip's distance from where the rigid shape puts it.
+  struct Result {
+    double bend, limb;
+    size_t limb_clusters;
+  };
+  auto run = [&](int coarse, bool on_bars) {
+    ff::ControlSet s = s0;
+    ff::buildClusters(s, vi, vj, vk, 2, 2, false, coarse, on_bars ? &parts : nullptr);
+    Result r{0.0, 0.0, 0};
+    for (size_t p : limb) r.limb_clusters += s.clusters.of_start[p + 1] - s.clusters.of_start[p];
+    ff::Controller ctl;
+    shapeMatchAlone(ctl, s, 50);
+    ff::ControlSet b, l;
+    auto subset = [&](const std::vector<size_t>& idx, ff::ControlSet& out) {
+      for (size_t p : idx) {
+        out.x0.push_back(s.x0[p]), out.y0.push_back(s.y0[p]), out.z0.push_back(s.z0[p]);
+        out.x.push_back(ctl.set().x[p]), out.y.push_back(ctl.set().y[p]), out.z.push_back(ctl.set().z[p]);
+      }
+    };
+    subset(bar, b);
+    r.bend = rigidResidual(b);
+    // The limb: with the lumps, how far it is from the whole's rigid fit.
+    std::vector<size_t> body_limb;
+    for (size_t p = 0; p < n; ++p)
+      if (parts[p] != ff::kPartBar) body_limb.push_back(p);
+    subset(body_limb, l);
+    r.limb = rigidResidual(l);
+    return r;
+  };
+  const Result one = run(0, false), whole = run(3, false), bars = run(3, true);
+  // The bar: the coarse level straightens it, on bars as over the whole.
+  EXPECT_LT(bars.bend, 0.5 * one.bend) << "one level " << one.bend << ", on bars " << bars.bend;
+  // The limb: on bars it is in no coarse cluster (as many clusters as with one
+  // level) and comes back as with one level; over the whole shape the body's
+  // clusters swing it back faster.
+  EXPECT_EQ(bars.limb_clusters, one.limb_clusters);
+  EXPECT_GT(whole.limb_clusters, one.limb_clusters);
+  EXPECT_LT(whole.limb, 0.9 * one.limb) << "whole " << whole.limb << ", one level " << one.limb;
+  EXPECT_NEAR(bars.limb, one.limb, 0.1 * one.limb) << "on bars " << bars.limb << ", one level " << one.limb;
 }
 
 TEST(ShapeMatching, BestFitFrameRecoversARigidMotion) {

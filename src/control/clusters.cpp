@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "target/local_thickness.h"
+
 namespace ff {
 
 namespace {
@@ -51,7 +53,8 @@ std::vector<std::vector<uint32_t>> connectedParts(const std::vector<uint32_t>& m
 }  // namespace
 
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width, bool connected, int coarse) {
+                   const std::vector<int>& vk, int stride, int half_width, bool connected, int coarse,
+                   const std::vector<uint8_t>* shape_parts) {
   const size_t n = set.size();
   std::vector<std::vector<uint32_t>> kept;
   std::vector<int> kx, ky, kz;
@@ -63,6 +66,7 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
     std::vector<int64_t> centre_keys;
     std::vector<int> cxs, cys, czs;
     for (size_t p = 0; p < n; ++p) {
+      if (!fine && shape_parts && (*shape_parts)[p] == kPartLimb) continue;  // limbs: the fine level alone
       const int64_t w = half_width, s = stride;
       const int64_t lo[3] = {floorDiv(vi[p] - w + s - 1, s), floorDiv(vj[p] - w + s - 1, s),
                              floorDiv(vk[p] - w + s - 1, s)};
@@ -90,6 +94,10 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
         parts.push_back(std::move(m));
       for (auto& part : parts) {
         if (part.size() < 4) continue;
+        // With the shape's parts, a coarse cluster holds a bar.
+        if (!fine && shape_parts &&
+            std::none_of(part.begin(), part.end(), [&](uint32_t p) { return (*shape_parts)[p] == kPartBar; }))
+          continue;
         if (fine)
           for (uint32_t p : part) covered[p] = 1;
         kept.push_back(std::move(part));

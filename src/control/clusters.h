@@ -1,5 +1,6 @@
 // clusters.h - overlapping shape-matching clusters over the reference voxels.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "control/control_set.h"
@@ -22,7 +23,7 @@ namespace ff {
 // particle's goal is the mean over the clusters of both levels that hold it).
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
                    const std::vector<int>& vk, int stride, int half_width, bool connected = false,
-                   int coarse = 0);
+                   int coarse = 0, const std::vector<uint8_t>* shape_parts = nullptr);
 
 // Each cluster's centre of mass over the points (x, y, z)[p], summed in
 // double in member order (the rest centres of buildClusters, the blend's

@@ -162,7 +162,18 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
   const bool limbs = std::lround(double(extent) / kClusterSpanShare) > sm.cluster_half_width &&
                      thinRidgeVoxels(g, float(2 * sm.cluster_half_width + 1)) * kLimbLengthShare >= extent;
   const ClusterSize cs = clusterSize(sm, extent, limbs);
-  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on, sm.coarse_clusters);
+  // The coarse level on bars alone (docs/CONTROL_UNITS.md, "Coarse clusters
+  // on bars"): each particle's part of the shape (reference[p] is the p-th
+  // inside voxel in grid index order).
+  std::vector<uint8_t> parts;
+  if (sm.coarse_clusters >= 2 && sm.coarse_bars) {
+    const std::vector<uint8_t> voxel_parts = shapeParts(g, float(2 * cs.half_width + 1));
+    parts.reserve(n);
+    for (size_t c = 0; c < g.inside.size() && parts.size() < n; ++c)
+      if (g.inside[c]) parts.push_back(voxel_parts[c]);
+  }
+  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on, sm.coarse_clusters,
+                parts.size() == n ? &parts : nullptr);
   return set;
 }
 

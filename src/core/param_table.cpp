@@ -166,6 +166,10 @@ const std::vector<ParamInfo>& paramTable() {
        ">= 2: a second level of clusters this many times the stride and half-width, so that a long thin "
        "part does not bend under its fluid; 0 or 1: one level",
        FF_FIELD(shape.coarse_clusters)},
+      {"shape_matching", "coarse_bars", T::Integer, 0, 1, false,
+       "1: the coarse clusters only around a bar that joins two lumps of the shape, never on a limb "
+       "(a shape without such a bar keeps one level); 0: over the whole shape",
+       FF_FIELD(shape.coarse_bars), kMode},
   };
   return table;
 }

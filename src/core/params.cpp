@@ -182,6 +182,12 @@ Params waterParams() {
   // Shapes do not climb off the floor or tip (docs/CONTROL_UNITS.md,
   // "Anchor": the standing anchor; docs/RESULTS.md, "Standing anchor").
   p.shape.anchor = 2;
+  // A bar between two lumps is matched with its ends by clusters 3 times as
+  // wide, so that it does not bend under its fluid; limbs and shapes without
+  // such a bar keep one level (docs/CONTROL_UNITS.md, "Coarse clusters on
+  // bars").
+  p.shape.coarse_clusters = 3;
+  p.shape.coarse_bars = 1;
   return p;
 }
 

@@ -202,16 +202,21 @@ struct ShapeMatchParams {
   // long thin part does not bend under the fluid it holds; 0 or 1 (every
   // preset): one level, as the paper.
   int coarse_clusters = 0;
+  // Where the coarse level acts (docs/CONTROL_UNITS.md, "Coarse clusters on
+  // bars"): 1, only around a bar that joins two lumps of the shape
+  // (shapeParts), a limb never; a shape without such a bar keeps one level.
+  // 0: over the whole shape (the paper has no coarse level).
+  int coarse_bars = 0;
   // The first target's blend time (s) for control radius `radius` under gravity `g`.
   float firstBlendTime(float radius, const float g[3]) const;
   // Whether `o` builds the same clusters: the fields read when the clusters
   // are built, as the control particles are placed (cluster_stride,
-  // cluster_half_width, coarse_clusters). A change of any of them re-places
+  // cluster_half_width, coarse_clusters, coarse_bars). A change of any of them re-places
   // the control particles at once (Simulation::setParams), so that it does
   // not wait for the next target. A new cluster field is added here.
   bool sameClusters(const ShapeMatchParams& o) const {
     return cluster_stride == o.cluster_stride && cluster_half_width == o.cluster_half_width &&
-           coarse_clusters == o.coarse_clusters;
+           coarse_clusters == o.coarse_clusters && coarse_bars == o.coarse_bars;
   }
 
   // The most clusters one control particle belongs to: the lattice points

@@ -35,8 +35,7 @@ class CpuBackend : public Backend {
   void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
-  using Backend::computeMetrics;
-  StepMetrics computeMetrics(bool with_shape) override;
+  StepMetrics computeMetrics() override;
   Phase firstNonFinite(int* substep = nullptr) override;
   size_t memoryBytes() const override;
   std::vector<StageTime> takeStageMs() override;

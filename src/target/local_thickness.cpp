@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 namespace ff {
 
@@ -37,6 +38,33 @@ void distance1d(float* f, int n, size_t stride, std::vector<int>& v, std::vector
     out[size_t(q)] = float(q - p) * float(q - p) + f[size_t(p) * stride];
   }
   for (int q = 0; q < n; ++q) f[size_t(q) * stride] = out[size_t(q)];
+}
+
+// The 26-connected components of the voxels where mask is set: a component
+// number per voxel (-1 elsewhere), numbered in grid index order of their
+// first voxel; n gets the count.
+std::vector<int> components(const VoxelGrid& g, const std::vector<uint8_t>& mask, int& n) {
+  std::vector<int> comp(mask.size(), -1);
+  std::vector<size_t> stack;
+  n = 0;
+  for (size_t s = 0; s < mask.size(); ++s) {
+    if (!mask[s] || comp[s] >= 0) continue;
+    comp[s] = n, stack.assign(1, s);
+    while (!stack.empty()) {
+      const size_t q = stack.back();
+      stack.pop_back();
+      const int i = int(q % size_t(g.nx)), j = int((q / size_t(g.nx)) % size_t(g.ny)),
+                k = int(q / (size_t(g.nx) * size_t(g.ny)));
+      for (int c = std::max(0, k - 1); c <= std::min(g.nz - 1, k + 1); ++c)
+        for (int b = std::max(0, j - 1); b <= std::min(g.ny - 1, j + 1); ++b)
+          for (int a = std::max(0, i - 1); a <= std::min(g.nx - 1, i + 1); ++a) {
+            const size_t r = g.index(a, b, c);
+            if (mask[r] && comp[r] < 0) comp[r] = n, stack.push_back(r);
+          }
+    }
+    ++n;
+  }
+  return comp;
 }
 
 }  // namespace
@@ -113,6 +141,90 @@ std::vector<uint8_t> thinVoxels(const VoxelGrid& g, float thickness) {
   const std::vector<float> t = localThickness(g, thickness);
   for (size_t i = 0; i < thin.size(); ++i) thin[i] = g.inside[i] && t[i] < thickness ? 1 : 0;
   return thin;
+}
+
+std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length) {
+  std::vector<uint8_t> part(g.inside.size(), kPartOutside);
+  const std::vector<float> d2 = squaredDistanceToOutside(g);
+  float most = 0.0f;
+  size_t n = 0;
+  for (size_t q = 0; q < d2.size(); ++q)
+    if (g.inside[q]) most = std::max(most, d2[q]), ++n;
+  const float r = kLumpDepthShare * std::sqrt(most), r2 = r * r;
+  const int w = int(std::ceil(r));
+  // The opening: within r of a voxel at least r deep.
+  std::vector<uint8_t> thick(d2.size(), 0);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t q = g.index(i, j, k);
+        if (!g.inside[q]) continue;
+        bool near = d2[q] >= r2;
+        for (int c = std::max(0, k - w); !near && c <= std::min(g.nz - 1, k + w); ++c)
+          for (int b = std::max(0, j - w); !near && b <= std::min(g.ny - 1, j + w); ++b)
+            for (int a = std::max(0, i - w); !near && a <= std::min(g.nx - 1, i + w); ++a) {
+              const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
+              near = dx * dx + dy * dy + dz * dz <= r2 && d2[g.index(a, b, c)] >= r2;
+            }
+        thick[q] = near;
+      }
+  // Lumps: the opening's components of at least kLumpVolumeShare of the shape.
+  int nl = 0;
+  std::vector<int> lump = components(g, thick, nl);
+  std::vector<size_t> size(size_t(nl), 0);
+  for (int l : lump)
+    if (l >= 0) ++size[size_t(l)];
+  for (size_t q = 0; q < lump.size(); ++q)
+    if (lump[q] >= 0 && double(size[size_t(lump[q])]) < kLumpVolumeShare * double(n)) lump[q] = -1;
+  // The thin parts, and of each the lumps it touches and its contact voxels
+  // (those with a lump voxel among their 26 neighbours).
+  std::vector<uint8_t> thin(d2.size(), 0), contact(d2.size(), 0);
+  for (size_t q = 0; q < d2.size(); ++q) thin[q] = g.inside[q] && lump[q] < 0;
+  int nt = 0;
+  const std::vector<int> part_of = components(g, thin, nt);
+  std::vector<std::set<int>> lumps_of(static_cast<size_t>(nt)), patches_of(static_cast<size_t>(nt));
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t q = g.index(i, j, k);
+        if (!thin[q]) continue;
+        for (int c = std::max(0, k - 1); c <= std::min(g.nz - 1, k + 1); ++c)
+          for (int b = std::max(0, j - 1); b <= std::min(g.ny - 1, j + 1); ++b)
+            for (int a = std::max(0, i - 1); a <= std::min(g.nx - 1, i + 1); ++a) {
+              const int l = lump[g.index(a, b, c)];
+              if (l >= 0) contact[q] = 1, lumps_of[size_t(part_of[q])].insert(l);
+            }
+      }
+  // Each contact patch's centre; a thin part's length is the largest
+  // distance between the centres of its patches.
+  int np = 0;
+  const std::vector<int> patch = components(g, contact, np);
+  std::vector<double> pc(4 * size_t(np), 0.0);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const int c = patch[g.index(i, j, k)];
+        if (c < 0) continue;
+        double* e = &pc[4 * size_t(c)];
+        e[0] += i, e[1] += j, e[2] += k, e[3] += 1.0;
+        patches_of[size_t(part_of[g.index(i, j, k)])].insert(c);
+      }
+  std::vector<uint8_t> is_bar(size_t(nt), 0);
+  for (size_t t = 0; t < size_t(nt); ++t) {
+    double longest = 0.0;
+    for (int a : patches_of[t])
+      for (int b : patches_of[t]) {
+        const double* e = &pc[4 * size_t(a)];
+        const double* f = &pc[4 * size_t(b)];
+        double d2ab = 0.0;
+        for (int x = 0; x < 3; ++x) d2ab += (e[x] / e[3] - f[x] / f[3]) * (e[x] / e[3] - f[x] / f[3]);
+        longest = std::max(longest, std::sqrt(d2ab));
+      }
+    is_bar[t] = lumps_of[t].size() >= 2 && longest >= double(min_length);
+  }
+  for (size_t q = 0; q < d2.size(); ++q)
+    if (g.inside[q]) part[q] = lump[q] >= 0 ? kPartLump : is_bar[size_t(part_of[q])] ? kPartBar : kPartLimb;
+  return part;
 }
 
 }  // namespace ff

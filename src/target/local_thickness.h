@@ -44,4 +44,22 @@ long thinRidgeVoxels(const VoxelGrid& g, float thickness);
 // (docs/METRICS.md), below the control radius.
 std::vector<uint8_t> thinVoxels(const VoxelGrid& g, float thickness);
 
+// The parts of a shape (docs/CONTROL_UNITS.md, "Coarse clusters on bars"),
+// per voxel (grid index order): kPartOutside, kPartLump, kPartBar or
+// kPartLimb. A lump is a thick part: the voxels within r of a voxel at least
+// r deep (distance to the outside, in voxels), r = kLumpDepthShare of the
+// shape's largest depth (a morphological opening by a ball of radius r),
+// 26-connected, holding at least kLumpVolumeShare of the shape's voxels. The
+// rest of the shape falls into 26-connected thin parts. A thin part that
+// touches two different lumps, with at least `min_length` voxels between the
+// centres of its patches of contact, is a bar (two lumps joined by a bar);
+// every other thin part (a limb with a free end, a handle on one lump, a
+// neck shorter than min_length, a rim, a shape with no lump at all) is a
+// limb. Depths are relative to the shape's own, so a scaled or finer
+// voxelised shape has the same lumps.
+constexpr uint8_t kPartOutside = 0, kPartLump = 1, kPartBar = 2, kPartLimb = 3;
+constexpr float kLumpDepthShare = 0.4f;
+constexpr double kLumpVolumeShare = 0.05;
+std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length);
+
 }  // namespace ff

@@ -51,7 +51,8 @@ class OpenClBackend : public Backend {
   void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
-  StepMetrics computeMetrics() override;
+  using Backend::computeMetrics;
+  StepMetrics computeMetrics(bool with_shape) override;
   Phase firstNonFinite(int* substep = nullptr) override;
   void setProfiling(bool on) override;
   std::vector<StageTime> takeStageMs() override;

@@ -28,7 +28,7 @@ std::vector<double> finish(const std::vector<float>& partial, size_t groups, siz
 
 }  // namespace
 
-StepMetrics OpenClBackend::computeMetrics() {
+StepMetrics OpenClBackend::computeMetrics(bool with_shape) {
   return clGuard("phase 'metrics'", [&] {
     Impl& d = *d_;
     cl::CommandQueue& q = d.queue();
@@ -63,9 +63,6 @@ StepMetrics OpenClBackend::computeMetrics() {
     m.coverage = reduce(d.m_coverage, nc_, 1, 0u, d.s.get(), cl_uint(nc_))[0] / double(nc_);
     m.control_count = long(nc_);
     if (!target_ || n_ == 0) return m;
-    // The thin voxels follow the control radius: a params edit since the
-    // target was set (viewer, script, Python) finds them again.
-    if (thin_radius_ != params_.control.radius) setMetricsTarget(target_);
 
     // bestFitFrame: centre of mass, A_pq about it, rotation warm-started from the last frame.
     const std::vector<double> sum =
@@ -82,6 +79,10 @@ StepMetrics OpenClBackend::computeMetrics() {
     apq.c2 = FF_F3(float(a[6]), float(a[7]), float(a[8]));
     frame_.q = ff_extract_rotation(apq, frame_.q, params_.shape.rotation_iterations * 4);
     for (int k = 0; k < 3; ++k) frame_.c[k] = com[k];
+    if (!with_shape) return m;
+    // The thin voxels follow the control radius: a params edit since the
+    // target was set (viewer, script, Python) finds them again.
+    if (thin_radius_ != params_.control.radius) setMetricsTarget(target_);
 
     // The fluid's index grid (cell h) over the current positions; the next
     // buildGrid sorts by it instead of building it again.

@@ -68,4 +68,37 @@ TEST(OpenClHostSyncs, DfsphReadsOnlyItsStoppingTests) {
   checkSyncs("water");
 }
 
+// Simulation::setShapeMetricsOnRequest on OpenCL: the steps without the
+// target's metrics launch neither the iou nor the shares kernel, and the
+// requested step reads the same values as a run that computes them every step.
+TEST(OpenClHostSyncs, ShapeMetricsOnRequestAreTheEveryStepValues) {
+  ff::SceneDesc scene = ff::defaultScene();
+  ff::Simulation every(scene, std::make_unique<ff::OpenClBackend>()),
+      asked(scene, std::make_unique<ff::OpenClBackend>());
+  asked.setShapeMetricsOnRequest(true);
+  for (int k = 1; k <= 8; ++k) {
+    const bool request = k == 8;
+    if (request) asked.requestMetrics();
+    // The count is the process's (cl_kernel.h): each run's step on its own.
+    auto readsOf = [](ff::Simulation& sim) {
+      const long before = sim.backend().hostSyncs().reads;
+      sim.step();
+      return sim.backend().hostSyncs().reads - before;
+    };
+    const long da = readsOf(every), db = readsOf(asked);
+    if (request) {
+      EXPECT_EQ(db, da) << "step " << k;
+    } else {
+      EXPECT_EQ(db, da - 2) << "step " << k << ": no iou and no shares read back";
+    }
+    EXPECT_EQ(every.metrics().max_speed, asked.metrics().max_speed) << "step " << k;
+  }
+  const ff::StepMetrics &a = every.metrics(), &b = asked.metrics();
+  EXPECT_GT(a.iou, 0.0);
+  EXPECT_EQ(a.iou, b.iou);
+  EXPECT_EQ(a.filled, b.filled);
+  EXPECT_EQ(a.stray, b.stray);
+  EXPECT_EQ(a.tilt, b.tilt);
+}
+
 }  // namespace

@@ -155,6 +155,47 @@ TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {
   EXPECT_EQ(sim.targetCacheSize(), 2u);
 }
 
+// setShapeMetricsOnRequest: the target's metrics only in the steps after
+// requestMetrics(), the same bits there as a run that computes them every
+// step (the best fit still advances every step), the last values carried
+// between them, and the same fluid throughout (the physics never reads them).
+TEST(SimulationApi, ShapeMetricsOnRequestAreTheEveryStepValues) {
+  ff::SceneDesc s = smallScene();
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 400)});
+  s.schedule.push_back({0.02, fftest::target(ff::TargetKind::Box, 400)});
+  ff::Simulation every(s, std::make_unique<ff::CpuBackend>(1)), asked(s, std::make_unique<ff::CpuBackend>(1));
+  asked.setShapeMetricsOnRequest(true);
+  double carried = -1.0;
+  for (int k = 1; k <= 12; ++k) {
+    const bool request = k == 3 || k == 9 || k == 12;
+    if (request) asked.requestMetrics();
+    every.step(), asked.step();
+    const ff::StepMetrics &a = every.metrics(), &b = asked.metrics();
+    EXPECT_EQ(a.max_speed, b.max_speed) << "step " << k;
+    EXPECT_EQ(a.density_error, b.density_error) << "step " << k;
+    EXPECT_EQ(a.max_pressure, b.max_pressure) << "step " << k;
+    EXPECT_EQ(a.coverage, b.coverage) << "step " << k;
+    if (request) {
+      EXPECT_GT(a.iou, 0.0) << "step " << k;
+      EXPECT_EQ(a.iou, b.iou) << "step " << k;
+      EXPECT_EQ(a.filled, b.filled) << "step " << k;
+      EXPECT_EQ(a.captured, b.captured) << "step " << k;
+      EXPECT_EQ(a.stray, b.stray) << "step " << k;
+      EXPECT_EQ(a.filled_thin, b.filled_thin) << "step " << k;
+      EXPECT_EQ(a.tilt, b.tilt) << "step " << k;
+      EXPECT_EQ(a.base_height, b.base_height) << "step " << k;
+      carried = b.iou;
+    } else if (carried >= 0.0) {
+      EXPECT_EQ(b.iou, carried) << "step " << k << ": the last computed value";
+      EXPECT_NE(a.iou, carried) << "step " << k << ": the shape is still forming";
+    }
+  }
+  ff::FluidState fa, fb;
+  every.backend().readFluid(fa), asked.backend().readFluid(fb);
+  EXPECT_EQ(fa.x, fb.x);
+  EXPECT_EQ(fa.vy, fb.vy);
+}
+
 TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {
   ff::SceneDesc s = smallScene();
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>());

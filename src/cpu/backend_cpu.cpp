@@ -165,7 +165,7 @@ void CpuBackend::setMetricsTarget(const TargetShape* target) {
   thin_radius_ = params_.control.radius;
 }
 
-StepMetrics CpuBackend::computeMetrics() {
+StepMetrics CpuBackend::computeMetrics(bool with_shape) {
   StepMetrics m;
   const FluidState& s = fluid_.s;
   const long n = long(s.size());
@@ -200,10 +200,11 @@ StepMetrics CpuBackend::computeMetrics() {
     m.coverage = cov / double(sv.size());
     m.control_count = long(sv.size());
     if (target_) {
+      bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
+      if (!with_shape) return m;
       // The thin voxels follow the control radius: a params edit since the
       // target was set (viewer, script, Python) finds them again.
       if (thin_radius_ != params_.control.radius) setMetricsTarget(target_);
-      bestFitFrame(controller_.set(), frame_.q, frame_.c, params_.shape.rotation_iterations * 4);
       const float h = params_.fluid.smoothing_radius;
       if (!fluid_.grid_current) {  // the next grid phase sorts by this one
         buildFluidIndex(fluid_, h, box_);

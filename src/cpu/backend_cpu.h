@@ -35,7 +35,8 @@ class CpuBackend : public Backend {
   void solvePressure(float dt) override;
   void integrate(float dt) override;
   int shapeMatching(float dt) override;
-  StepMetrics computeMetrics() override;
+  using Backend::computeMetrics;
+  StepMetrics computeMetrics(bool with_shape) override;
   Phase firstNonFinite(int* substep = nullptr) override;
   size_t memoryBytes() const override;
   std::vector<StageTime> takeStageMs() override;

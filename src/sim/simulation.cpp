@@ -204,6 +204,7 @@ void Simulation::step() {
   ++step_;
   time_ += double(fp.time_step);
   const bool want = metrics_requested_ || step_ % metrics_every_ == 0;
+  const bool with_shape = !shape_on_request_ || metrics_requested_;
   metrics_requested_ = false;
   metrics_fresh_ = want;
   if (want) {
@@ -215,7 +216,13 @@ void Simulation::step() {
     // --metrics-every skipped some), so its half-life is 0.1 s for any K.
     const double since = double(step_ - unchecked_from_);
     const double held = metrics_.max_pressure * std::exp2(-since * double(fp.time_step) / 0.1);
-    timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(); });
+    const StepMetrics last = metrics_;
+    timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(with_shape); });
+    if (!with_shape) {
+      metrics_.iou = last.iou, metrics_.filled = last.filled, metrics_.captured = last.captured;
+      metrics_.stray = last.stray, metrics_.filled_thin = last.filled_thin;
+      metrics_.tilt = last.tilt, metrics_.base_height = last.base_height;
+    }
     metrics_.max_pressure = std::max(metrics_.max_pressure, held);
     check(step, time, unchecked_from_ < step ? 0 : n);
     unchecked_from_ = step_;

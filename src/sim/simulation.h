@@ -68,6 +68,13 @@ class Simulation {
   void requestMetrics() { metrics_requested_ = true; }
   // Whether the last step computed metrics() (else they are from an earlier step).
   bool metricsFresh() const { return metrics_fresh_; }
+  // With `on`, a step computes the metrics that measure the fluid against the
+  // target (iou, filled, captured, stray, filled_thin, tilt, base_height) only
+  // after requestMetrics(); the others keep the values of the last step that
+  // computed them. The physics is the same: the substeps and the NaN check
+  // read only the fluid's metrics (Backend::computeMetrics). Off (the
+  // default): every step with metrics computes them all.
+  void setShapeMetricsOnRequest(bool on) { shape_on_request_ = on; }
 
   // Accumulated milliseconds per phase and the number of steps they cover.
   const std::array<double, size_t(Phase::Count)>& phaseMs() const { return phase_ms_; }
@@ -95,6 +102,7 @@ class Simulation {
   void check(long step, double time, int substeps);
   int metrics_every_ = 1;
   bool metrics_requested_ = false, metrics_fresh_ = false;
+  bool shape_on_request_ = false;
   long unchecked_from_ = 0;  // the first step not yet checked for NaN/Inf
 
   SceneDesc scene_;

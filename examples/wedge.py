@@ -51,8 +51,10 @@ def main():
     open(a.out, "a").close()  # fail now on a file it cannot write, not after the runs
     rows = []
     for v in values:
-        sim = flowform.Simulation(a.scene, backend=a.backend, threads=a.threads)
-        sim.set_params(params_overlay(a.param, v))
+        # From the start, as in a scene file: set_params after the first
+        # target is placed would leave what placement reads (control.adaptive,
+        # shape_matching.blend_first, the fluid's spacing) at the scene's value.
+        sim = flowform.Simulation(a.scene, backend=a.backend, threads=a.threads, params=params_overlay(a.param, v))
         m = sim.run(steps=a.steps) if a.steps > 0 else sim.run(seconds=a.seconds)
         n = len(m["iou"])
         tail = m["iou"][n - max(1, n // 4):]

@@ -94,7 +94,8 @@ py::array_t<T> column(const std::vector<T>& v) {
 // The Python-side run: a Simulation and what the module adds around it.
 class PySimulation {
  public:
-  PySimulation(const py::object& scene, const std::string& backend, int device, int threads) {
+  PySimulation(const py::object& scene, const std::string& backend, int device, int threads,
+               const py::object& params) {
     ff::checkThreadCount(threads, "threads");
     ff::SceneDesc desc;
     if (py::isinstance<py::dict>(scene))
@@ -105,6 +106,16 @@ class PySimulation {
       desc = ff::defaultScene();
     else
       throw Error("scene: give a file name, a dict in scene syntax, or None for the default scene");
+    // Parameters over the scene's own, before the fluid is made and the first
+    // target placed (set_params after that leaves what they set: the
+    // particle spacing, the first placement, blend_first, adaptive).
+    if (!params.is_none()) {
+      if (!py::isinstance<py::dict>(params))
+        throw Error(
+            "params: give a dict in the scene's 'params' syntax, e.g. {'fluid': {'viscosity': 0.03}}");
+      readParams(params, desc.params);
+      ff::validateParams(desc.params, "<params>");
+    }
     std::string note;
     auto b = ff::makeBackend(backend, device, threads, &note, ff::pythonBackendNames());
     sim_ = std::make_unique<Simulation>(std::move(desc), std::move(b));
@@ -195,9 +206,13 @@ class PySimulation {
   }
   void setParams(const py::dict& params) {
     ff::Params p = sim_->scene().params;
+    readParams(params, p);
+    sim_->setParams(p);
+  }
+  // A dict in the scene's "params" syntax over `p` (only the keys given).
+  static void readParams(const py::handle& params, ff::Params& p) {
     ff::parseParamsOverlay(ff::parseJsonStrict(toJson(params, "<params>", "params"), "<params>"), "<params>",
                            "params", p);
-    sim_->setParams(p);
   }
 
   Simulation& sim() { return *sim_; }
@@ -248,10 +263,13 @@ PYBIND11_MODULE(flowform, m) {
   });
 
   py::class_<PySimulation>(m, "Simulation")
-      .def(py::init<const py::object&, const std::string&, int, int>(), py::arg("scene") = py::none(),
-           py::arg("backend") = "cpu", py::arg("device") = -1, py::arg("threads") = 0,
+      .def(py::init<const py::object&, const std::string&, int, int, const py::object&>(),
+           py::arg("scene") = py::none(), py::arg("backend") = "cpu", py::arg("device") = -1,
+           py::arg("threads") = 0, py::arg("params") = py::none(),
            "A run of a scene: a file name, a dict in scene syntax (scenes/README.md), or None for the "
-           "built-in default scene. backend: cpu, opencl or auto.")
+           "built-in default scene. backend: cpu, opencl or auto. params: a dict in the scene's 'params' "
+           "syntax over the scene's own, in effect from the start (the fluid's spacing, the first target's "
+           "placement), as a scene file's params are; set_params changes them later.")
       .def("step", &PySimulation::step, "One fluid time step.")
       .def(
           "run", &PySimulation::run, py::arg("steps") = 0, py::arg("seconds") = 0.0, py::arg("until") = 0.0,

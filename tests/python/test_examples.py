@@ -47,6 +47,15 @@ def wedge(src, module_dir, tmp):
         check(abs(float(r[-1]) - 4 * 0.004) < 1e-6, "4 steps of 0.004 s: %s" % r)
     # Different attraction (the default preset pulls normalised: attraction_g), different run: the wedge really changed the parameter.
     check(rows[1][1:-1] != rows[2][1:-1], "both runs gave the same metrics")
+    # A parameter read only where the first target is placed (control.adaptive:
+    # each control particle's radius from the target's thickness) acts too:
+    # the wedge gives it from the start (before, set_params after the
+    # placement left both runs the same).
+    run(os.path.join(src, "examples", "wedge.py"),
+        ["--param", "control.adaptive", "--values", "0,1", "--steps", "3", "--threads", "2", "--out", "a.csv"],
+        tmp, module_dir)
+    rows = list(csv.reader(open(os.path.join(tmp, "a.csv"))))
+    check(len(rows) == 3 and rows[1][1:-1] != rows[2][1:-1], "adaptive 0 and 1 gave the same metrics: %s" % rows)
     # Bad arguments (a traceback, or a silent run of the default length, before).
     script = os.path.join(src, "examples", "wedge.py")
     refused(script, ["--values", "abc", "--steps", "1"], tmp, module_dir, "--values: 'abc' is not a number")

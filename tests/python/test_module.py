@@ -170,6 +170,25 @@ class ModuleTest(unittest.TestCase):
             flowform.Simulation(SCENE, backend="cpu", threads=100000)
         self.assertIn("threads: must be in [0, 1024]", str(ctx.exception))
 
+    def test_params_given_with_the_scene_act_from_the_start(self):
+        # Simulation(scene, params=...) is the scene with those params, bit for
+        # bit: control.adaptive, read where the first target is placed, acts;
+        # set_params after the placement leaves the first placement as it was.
+        over = {"control": {"adaptive": 1}}
+        a = flowform.Simulation(SCENE, backend="cpu", threads=2, params=over).run(steps=3)
+        b = flowform.Simulation(dict(SCENE, params=over), backend="cpu", threads=2).run(steps=3)
+        self.assertTrue(np.array_equal(a["iou"], b["iou"]))
+        self.assertTrue(np.array_equal(a["max_speed"], b["max_speed"]))
+        late = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        late.set_params(over)
+        self.assertFalse(np.array_equal(a["iou"], late.run(steps=3)["iou"]))
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(SCENE, backend="cpu", threads=2, params={"fluid": {"viscosity": -1}})
+        self.assertIn("<params>: params.fluid.viscosity: must be in", str(ctx.exception))
+        with self.assertRaises(flowform.Error) as ctx:
+            flowform.Simulation(SCENE, backend="cpu", threads=2, params=5)
+        self.assertIn("params: give a dict", str(ctx.exception))
+
     def test_run_until_stops_where_the_time_reaches_until(self):
         # run(until=T): no step where sim.time >= T already, else the fewest
         # steps after which sim.time >= T (less than one step past it),

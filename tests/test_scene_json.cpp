@@ -3,12 +3,15 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -510,6 +513,52 @@ TEST(Params, EveryTableKeyIsDocumentedInTheSceneFormat) {
                 doc.find(quoted) != std::string::npos)
         << info.name();
   }
+}
+
+// The table of scene files in scenes/README.md against the files: each
+// row's preset, fluid particle count and duration are the file's, and every
+// scene file has a row (water/*.json: the row of the same name in this
+// folder, on the water preset). Before, it said every scene in the folder
+// used `paper`; default.json uses `default`.
+TEST(Params, TheSceneFolderTableSaysWhatTheFilesHold) {
+  const std::string dir = std::string(FF_SOURCE_DIR) + "/scenes/";
+  std::ifstream in(dir + "README.md");
+  ASSERT_TRUE(in);
+  struct Row {
+    std::string preset, particles, duration;
+  };
+  std::map<std::string, Row> rows;  // file name -> its row
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream ls(line.substr(1));
+    for (std::string c; std::getline(ls, c, '|');) cells.push_back(c.substr(1, c.size() - 2));
+    if (cells.size() < 5) continue;
+    auto unquote = [](const std::string& t) { return t.size() > 2 ? t.substr(1, t.size() - 2) : t; };
+    rows[unquote(cells[0])] = {unquote(cells[1]), cells[2].substr(0, cells[2].find(' ')), cells[4]};
+  }
+  ASSERT_TRUE(rows.count("water/*.json"));
+  int files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.path().extension() != ".json" || e.path().parent_path().filename() == "scripts") continue;
+    const std::string rel = std::filesystem::relative(e.path(), dir).string();
+    const bool water = rel.rfind("water/", 0) == 0;
+    const std::string name = water ? rel.substr(6) : rel;
+    ASSERT_TRUE(rows.count(name)) << rel << " has no row";
+    std::ifstream f(e.path());
+    const json j = json::parse(f);
+    long particles = 0;
+    for (const json& b : j["fluid"])
+      particles += b["dims"][0].get<long>() * b["dims"][1].get<long>() * b["dims"][2].get<long>();
+    const Row& r = rows[name];
+    EXPECT_EQ(j["preset"].get<std::string>(), water ? rows["water/*.json"].preset : r.preset) << rel;
+    EXPECT_EQ(std::to_string(particles), r.particles) << rel;
+    char duration[32];
+    std::snprintf(duration, sizeof duration, "%g s", j["duration"].get<double>());
+    EXPECT_EQ(duration, r.duration) << rel;
+    ++files;
+  }
+  EXPECT_GE(files, 11);
 }
 
 // A key a scene's params give that another parameter's mode overrides does

@@ -262,6 +262,19 @@ TEST(ParamTable, EveryRangeHoldsItsDefaultAndIsEnforced) {
   }
 }
 
+// A run of T seconds takes the fewest steps that reach T (flowform run
+// --seconds, a scene's duration, Python's run(seconds=)). The step is a
+// float: 0.005f is 0.004999999888, so 4 steps end at 0.0199999996 s, which
+// has reached 0.02 s (before, 5 steps ran, and 601 for 3 s).
+TEST(ResourceLimits, RunStepsAreTheFewestThatReachTheTime) {
+  EXPECT_EQ(ff::runSteps(0.02, double(0.005f), "t"), 4);
+  EXPECT_EQ(ff::runSteps(3.0, double(0.005f), "t"), 600);
+  EXPECT_EQ(ff::runSteps(0.04, double(0.004f), "t"), 10);  // 0.004f is above 0.004
+  EXPECT_EQ(ff::runSteps(0.021, double(0.005f), "t"), 5);  // between two steps: the one after
+  EXPECT_EQ(ff::runSteps(0.001, double(0.004f), "t"), 1);
+  EXPECT_EQ(ff::runSteps(4.0, 0.004, "t"), 1000);
+}
+
 TEST(ResourceLimits, ByteSizesParseAndTheLimitNamesItsOrigin) {
   EXPECT_DOUBLE_EQ(ff::parseByteSize("4G", "x"), 4.0 * 1024 * 1024 * 1024);
   EXPECT_DOUBLE_EQ(ff::parseByteSize("512MiB", "x"), 512.0 * 1024 * 1024);

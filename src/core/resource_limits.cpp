@@ -131,7 +131,12 @@ long runSteps(double seconds, double dt, const std::string& what) {
     std::snprintf(buf, sizeof buf, ": must be a finite number of seconds > 0 (got %g)", seconds);
     throw Error(what + buf);
   }
-  const double steps = std::ceil(seconds / dt - 1e-9);
+  // The fewest steps that reach `seconds`, where a count within 1e-6 of a
+  // whole number (relative) is that number: the step is a float, and 4
+  // steps of 0.005 s end at 0.0199999996 s, which has reached 0.02 s
+  // (before, a fifth step ran).
+  const double x = seconds / dt;
+  const double steps = std::ceil(x - std::max(1e-9, 1e-6 * x));
   if (!(steps <= kMaxRunSteps)) {
     std::snprintf(buf, sizeof buf, ": %g s is %.3g steps of %g s, over the limit of %.3g steps", seconds,
                   steps, dt, kMaxRunSteps);

@@ -53,7 +53,9 @@ void checkMemory(double bytes, const std::string& where, const std::string& key,
 // Throws unless `n` fluid particles fit in memory (and in 32-bit indices).
 void checkFluidCount(double n, const std::string& where, const std::string& key);
 
-// The number of steps of `dt` that `seconds` make. Throws ff::Error starting
+// The number of steps of `dt` that `seconds` make: the fewest that reach it,
+// a count within 1e-6 (relative) of a whole number taken as that number (dt
+// is a float: 0.005 is 0.004999999888). Throws ff::Error starting
 // with `what` (e.g. "scene.json: duration", "--seconds") unless `seconds` is
 // finite and > 0 and the run has at most kMaxRunSteps steps.
 long runSteps(double seconds, double dt, const std::string& what);

@@ -186,7 +186,8 @@ void ClDfsphSolver::solve(const ClFluidRefs& f, const FluidParams& p, float dt, 
   const float ratio = last_dt_ > 0.0f ? dt / last_dt_ : 1.0f;
   last_dt_ = dt;
   // Divergence-free solve on the velocities of the last substep.
-  last_div_ = iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, 1);
+  last_div_ = iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt),
+                      p.divergence_min_iterations, kWarmStart * ratio, 1);
   record(f, "pressure", "divergence solve", &t0);
   // Every other acceleration of the substep and the walls' support, then the
   // constant-density solve.

@@ -287,6 +287,7 @@ TEST(BenchStability, ModesAreTheTablesFlaggedParametersAndNoCountIsSwitched) {
   const std::set<std::string> modes = {"control.normalise", "control.adaptive", "shape_matching.anchor",
                                        "shape_matching.coarse_bars"};
   const std::set<std::string> counts = {"fluid.max_iterations",
+                                        "fluid.divergence_min_iterations",
                                         "fluid.max_substeps",
                                         "control.auto_count",
                                         "shape_matching.cluster_stride",

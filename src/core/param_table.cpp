@@ -89,6 +89,10 @@ const std::vector<ParamInfo>& paramTable() {
        "> 0: the frame step (time_step) is this many fall times sqrt(h / |g|) of the smoothing radius, "
        "in whole microseconds; 0: time_step in seconds",
        FF_FIELD(fluid.time_step_fall)},
+      {"fluid", "divergence_min_iterations", T::Integer, 0, 10, false,
+       "dfsph: the fewest iterations of the divergence solve; 0: it stops at its first test (after the warm "
+       "start) where that meets divergence_tolerance",
+       FF_FIELD(fluid.divergence_min_iterations)},
 
       {"control", "radius", T::Real, 1e-5, 10.0, false, "influence radius of a control particle (m)",
        FF_FIELD(control.radius)},

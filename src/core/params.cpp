@@ -146,6 +146,10 @@ Params waterParams() {
   f.time_step_fall = 0.11161f;
   f.setFrameStep();
   f.viscosity = 0.1f;  // docs/PRESETS.md: damps the settling of the cubic lattice
+  // The divergence solve stops at its first test where the warm start already
+  // meets its tolerance (docs/PRESETS.md, "The divergence solve's floor"):
+  // on the peer dam break it always does.
+  f.divergence_min_iterations = 0;
   // The pull that does not depend on the control particles' density
   // (docs/CONTROL_UNITS.md, "Normalised pull"); the paper preset keeps eq. 4
   // and 6 raw and the radius in metres.

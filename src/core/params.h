@@ -68,6 +68,10 @@ struct FluidParams {
   float density_tolerance = 0.0005f;
   float divergence_tolerance = 0.001f;
   int max_iterations = 100;
+  // DFSPH: the fewest iterations of the divergence solve (SPlisHSPlasH: 1);
+  // 0 lets it stop at its first test, after the warm start, where that
+  // already meets divergence_tolerance (docs/PRESETS.md).
+  int divergence_min_iterations = 1;
 
   float restVolume() const { return particle_mass / rest_density; }
   float restSpacing() const;  // cube root of the rest volume

@@ -353,8 +353,8 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
   last_dt_ = dt;
   // Divergence-free solve on the velocities of the last substep.
   Clock::time_point t0 = Clock::now();
-  last_div_ =
-      iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt), 1, kWarmStart * ratio, kv_);
+  last_div_ = iterate(f, p, false, dt, double(p.divergence_tolerance) / double(dt),
+                      p.divergence_min_iterations, kWarmStart * ratio, kv_);
   record(stages_, "pressure", "divergence solve", t0);
   t0 = Clock::now();
   // Every other acceleration of the substep and the walls' support in the

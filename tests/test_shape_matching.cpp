@@ -4,10 +4,12 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "control/clusters.h"
 #include "control/controller.h"
+#include "control/placement.h"
 #include "control/shape_matching.h"
 #include "target/local_thickness.h"
 
@@ -278,3 +280,49 @@ TEST(ShapeMatching, BestFitFrameRecoversARigidMotion) {
 }
 
 }  // namespace
+
+// The Euler characteristic of voxel solids, from topology: a box 1, a box
+// pierced by one square hole (a ring) 0, by two holes -1, a box with a sealed
+// cavity 2, two separate boxes 2.
+TEST(ShapeParts, EulerCharacteristicCountsLoopsAndCavities) {
+  auto grid = [](const std::vector<std::array<int, 6>>& on, const std::vector<std::array<int, 6>>& off) {
+    ff::VoxelGrid g;
+    g.voxel = 0.01f, g.nx = 20, g.ny = 12, g.nz = 10;
+    g.inside.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0);
+    for (int value : {1, 0})
+      for (const auto& b : value ? on : off)
+        for (int k = b[4]; k < b[5]; ++k)
+          for (int j = b[2]; j < b[3]; ++j)
+            for (int i = b[0]; i < b[1]; ++i) g.inside[g.index(i, j, k)] = uint8_t(value);
+    return g;
+  };
+  const std::array<int, 6> box{1, 19, 1, 11, 1, 9};
+  EXPECT_EQ(ff::eulerCharacteristic(grid({box}, {})), 1);
+  EXPECT_EQ(ff::eulerCharacteristic(grid({box}, {{4, 8, 4, 8, 0, 10}})), 0);
+  EXPECT_EQ(ff::eulerCharacteristic(grid({box}, {{4, 8, 4, 8, 0, 10}, {12, 16, 4, 8, 0, 10}})), -1);
+  EXPECT_EQ(ff::eulerCharacteristic(grid({box}, {{4, 8, 4, 8, 3, 6}})), 2);
+  EXPECT_EQ(ff::eulerCharacteristic(grid({{1, 8, 1, 11, 1, 9}, {10, 19, 1, 11, 1, 9}}, {})), 2);
+}
+
+// Coarse clusters on loops (docs/CONTROL_UNITS.md): a ring has no bar
+// between two lumps, yet with shape_matching.coarse_bars 1 it gets the
+// coarse level over the whole shape, the same clusters as coarse_bars 0;
+// a ball (no loop, no bar) keeps one level.
+TEST(ShapeMatching, CoarseClustersCoverAShapeWithALoop) {
+  auto clusters = [](ff::TargetKind kind, int coarse, int bars) {
+    ff::TargetSpec spec;
+    spec.kind = kind;
+    const ff::TargetShape t = ff::buildTarget(spec, 0.002, 0.004f);
+    ff::ShapeMatchParams sm;
+    sm.coarse_clusters = coarse, sm.coarse_bars = bars;
+    const ff::ControlSet s = ff::placeControlParticles(t, t.boundsMin(), t.boundsMax(), sm,
+                                                       ff::Vec3(-1, -1, -1), ff::Vec3(1, 1, 1));
+    return std::make_pair(s.clusters.start, s.clusters.members);
+  };
+  const auto ring_one = clusters(ff::TargetKind::Torus, 0, 1),
+             ring_bars = clusters(ff::TargetKind::Torus, 3, 1),
+             ring_whole = clusters(ff::TargetKind::Torus, 3, 0);
+  EXPECT_EQ(ring_bars, ring_whole);
+  EXPECT_GT(ring_bars.first.size(), ring_one.first.size());
+  EXPECT_EQ(clusters(ff::TargetKind::Sphere, 3, 1), clusters(ff::TargetKind::Sphere, 0, 1));
+}

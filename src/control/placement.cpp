@@ -166,7 +166,10 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
   // on bars"): each particle's part of the shape (reference[p] is the p-th
   // inside voxel in grid index order).
   std::vector<uint8_t> parts;
-  if (sm.coarse_clusters >= 2 && sm.coarse_bars) {
+  // A shape with a closed loop (a ring, a letter O or A: Euler
+  // characteristic <= 0) and no limbs keeps the coarse level everywhere
+  // (docs/CONTROL_UNITS.md, "Coarse clusters on loops").
+  if (sm.coarse_clusters >= 2 && sm.coarse_bars && (limbs || eulerCharacteristic(g) > 0)) {
     const std::vector<uint8_t> voxel_parts = shapeParts(g, float(2 * cs.half_width + 1));
     parts.reserve(n);
     for (size_t c = 0; c < g.inside.size() && parts.size() < n; ++c)

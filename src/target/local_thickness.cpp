@@ -227,4 +227,31 @@ std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length) {
   return part;
 }
 
+long eulerCharacteristic(const VoxelGrid& g) {
+  const auto in = [&g](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < g.nx && j < g.ny && k < g.nz && g.inside[g.index(i, j, k)];
+  };
+  // Each cell of the cubical complex is present when any voxel that holds it
+  // is inside; the voxels that hold the cell at (i, j, k) spanning the axes in
+  // `span` are (i - a, j - b, k - c) with a, b, c in {0, 1} along the axes the
+  // cell does not span, 0 along those it spans.
+  long chi = 0;
+  for (int span = 0; span < 8; ++span) {
+    const int sx = span & 1, sy = (span >> 1) & 1, sz = (span >> 2) & 1;
+    const int dim = sx + sy + sz;
+    long count = 0;
+    for (int k = 0; k <= g.nz - sz; ++k)
+      for (int j = 0; j <= g.ny - sy; ++j)
+        for (int i = 0; i <= g.nx - sx; ++i) {
+          bool present = false;
+          for (int c = 0; c <= 1 - sz && !present; ++c)
+            for (int b = 0; b <= 1 - sy && !present; ++b)
+              for (int a = 0; a <= 1 - sx && !present; ++a) present = in(i - a, j - b, k - c);
+          count += present;
+        }
+    chi += (dim % 2 == 0 ? 1 : -1) * count;
+  }
+  return chi;
+}
+
 }  // namespace ff

@@ -62,4 +62,11 @@ constexpr float kLumpDepthShare = 0.4f;
 constexpr double kLumpVolumeShare = 0.05;
 std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length);
 
+// The Euler characteristic of the union of the inside voxels as closed unit
+// cubes: vertices - edges + faces - cubes. A solid ball gives 1, a solid
+// torus (a ring, a letter O) 0, a body with two holes -1: each handle
+// (closed loop through the shape) lowers it by one, each sealed cavity
+// raises it by one.
+long eulerCharacteristic(const VoxelGrid& g);
+
 }  // namespace ff

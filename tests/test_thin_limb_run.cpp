@@ -111,6 +111,11 @@ LimbFill runFigure(const std::string& mesh, float velocity_rate, double seconds)
   ff::SceneDesc scene = fftest::blockScene(ff::Vec3(0.5f, 0.4f, 0.3f), ff::Vec3(0.2f, 0.0f, 0.1f), 16, 14, 16,
                                            "thin limb test");
   scene.params = ff::presetParams("water");
+  // The velocity force alone: the recapture at the speed sqrt(g r) with which
+  // the rate was measured (docs/CONTROL_UNITS.md). The water preset's faster
+  // recapture (2 sqrt(g r) since 2026-12-01) also lifts fluid into the arms,
+  // and hides the rate's effect (arms 0.889 at twice the rate).
+  scene.params.control.recapture = 1.0f;
   if (velocity_rate > 0.0f) scene.params.control.velocity_rate = velocity_rate;
   ff::TargetSpec t = fftest::target(ff::TargetKind::Mesh);
   t.mesh = t.resolved_path = mesh;

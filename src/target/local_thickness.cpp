@@ -40,6 +40,17 @@ void distance1d(float* f, int n, size_t stride, std::vector<int>& v, std::vector
   for (int q = 0; q < n; ++q) f[size_t(q) * stride] = out[size_t(q)];
 }
 
+// Calls visit(a, b, c) on the voxels of g within w of (i, j, k) along each
+// axis (w = 1: the voxel and its 26 neighbours), in grid index order, until
+// visit returns false.
+template <class Visit>
+void forBox(const VoxelGrid& g, int i, int j, int k, int w, Visit&& visit) {
+  for (int c = std::max(0, k - w); c <= std::min(g.nz - 1, k + w); ++c)
+    for (int b = std::max(0, j - w); b <= std::min(g.ny - 1, j + w); ++b)
+      for (int a = std::max(0, i - w); a <= std::min(g.nx - 1, i + w); ++a)
+        if (!visit(a, b, c)) return;
+}
+
 // The 26-connected components of the voxels where mask is set: a component
 // number per voxel (-1 elsewhere), numbered in grid index order of their
 // first voxel; n gets the count.
@@ -55,12 +66,11 @@ std::vector<int> components(const VoxelGrid& g, const std::vector<uint8_t>& mask
       stack.pop_back();
       const int i = int(q % size_t(g.nx)), j = int((q / size_t(g.nx)) % size_t(g.ny)),
                 k = int(q / (size_t(g.nx) * size_t(g.ny)));
-      for (int c = std::max(0, k - 1); c <= std::min(g.nz - 1, k + 1); ++c)
-        for (int b = std::max(0, j - 1); b <= std::min(g.ny - 1, j + 1); ++b)
-          for (int a = std::max(0, i - 1); a <= std::min(g.nx - 1, i + 1); ++a) {
-            const size_t r = g.index(a, b, c);
-            if (mask[r] && comp[r] < 0) comp[r] = n, stack.push_back(r);
-          }
+      forBox(g, i, j, k, 1, [&](int a, int b, int c) {
+        const size_t r = g.index(a, b, c);
+        if (mask[r] && comp[r] < 0) comp[r] = n, stack.push_back(r);
+        return true;
+      });
     }
     ++n;
   }
@@ -104,13 +114,12 @@ std::vector<float> localThickness(const VoxelGrid& g, float cap) {
         const float value = std::min(2.0f * full, 2.0f * cap_r);
         const int w = int(std::floor(r));
         const float r2 = r * r;
-        for (int c2 = std::max(0, k - w); c2 <= std::min(g.nz - 1, k + w); ++c2)
-          for (int b = std::max(0, j - w); b <= std::min(g.ny - 1, j + w); ++b)
-            for (int a = std::max(0, i - w); a <= std::min(g.nx - 1, i + w); ++a) {
-              const float dx = float(a - i), dy = float(b - j), dz = float(c2 - k);
-              const size_t q = g.index(a, b, c2);
-              if (g.inside[q] && dx * dx + dy * dy + dz * dz <= r2) t[q] = std::max(t[q], value);
-            }
+        forBox(g, i, j, k, w, [&](int a, int b, int c2) {
+          const float dx = float(a - i), dy = float(b - j), dz = float(c2 - k);
+          const size_t q = g.index(a, b, c2);
+          if (g.inside[q] && dx * dx + dy * dy + dz * dz <= r2) t[q] = std::max(t[q], value);
+          return true;
+        });
       }
   for (float& x : t) x = std::min(x * g.voxel, cap);
   return t;
@@ -125,10 +134,7 @@ long thinRidgeVoxels(const VoxelGrid& g, float thickness) {
         const float d = d2[g.index(i, j, k)];
         if (d < 2.0f) continue;
         bool top = true;
-        for (int c = std::max(0, k - 1); top && c <= std::min(g.nz - 1, k + 1); ++c)
-          for (int b = std::max(0, j - 1); top && b <= std::min(g.ny - 1, j + 1); ++b)
-            for (int a = std::max(0, i - 1); top && a <= std::min(g.nx - 1, i + 1); ++a)
-              top = d2[g.index(a, b, c)] <= d;
+        forBox(g, i, j, k, 1, [&](int a, int b, int c) { return top = d2[g.index(a, b, c)] <= d; });
         if (top && 2.0f * std::sqrt(d) - 1.0f <= thickness) ++thin;
       }
   return thin;
@@ -160,12 +166,12 @@ std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length) {
         const size_t q = g.index(i, j, k);
         if (!g.inside[q]) continue;
         bool near = d2[q] >= r2;
-        for (int c = std::max(0, k - w); !near && c <= std::min(g.nz - 1, k + w); ++c)
-          for (int b = std::max(0, j - w); !near && b <= std::min(g.ny - 1, j + w); ++b)
-            for (int a = std::max(0, i - w); !near && a <= std::min(g.nx - 1, i + w); ++a) {
-              const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
-              near = dx * dx + dy * dy + dz * dz <= r2 && d2[g.index(a, b, c)] >= r2;
-            }
+        if (!near)
+          forBox(g, i, j, k, w, [&](int a, int b, int c) {
+            const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
+            near = dx * dx + dy * dy + dz * dz <= r2 && d2[g.index(a, b, c)] >= r2;
+            return !near;
+          });
         thick[q] = near;
       }
   // Lumps: the opening's components of at least kLumpVolumeShare of the shape.
@@ -188,12 +194,11 @@ std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length) {
       for (int i = 0; i < g.nx; ++i) {
         const size_t q = g.index(i, j, k);
         if (!thin[q]) continue;
-        for (int c = std::max(0, k - 1); c <= std::min(g.nz - 1, k + 1); ++c)
-          for (int b = std::max(0, j - 1); b <= std::min(g.ny - 1, j + 1); ++b)
-            for (int a = std::max(0, i - 1); a <= std::min(g.nx - 1, i + 1); ++a) {
-              const int l = lump[g.index(a, b, c)];
-              if (l >= 0) contact[q] = 1, lumps_of[size_t(part_of[q])].insert(l);
-            }
+        forBox(g, i, j, k, 1, [&](int a, int b, int c) {
+          const int l = lump[g.index(a, b, c)];
+          if (l >= 0) contact[q] = 1, lumps_of[size_t(part_of[q])].insert(l);
+          return true;
+        });
       }
   // Each contact patch's centre; a thin part's length is the largest
   // distance between the centres of its patches.

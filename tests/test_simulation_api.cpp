@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -194,6 +195,33 @@ TEST(SimulationApi, ShapeMetricsOnRequestAreTheEveryStepValues) {
   every.backend().readFluid(fa), asked.backend().readFluid(fb);
   EXPECT_EQ(fa.x, fb.x);
   EXPECT_EQ(fa.vy, fb.vy);
+}
+
+// StepMetrics::copyShapeMetrics (what a step without the target's metrics
+// carries over) copies exactly the columns that measure the fluid against the
+// target, named here, and leaves every other column as it was.
+TEST(SimulationApi, CopyShapeMetricsCopiesTheTargetsColumnsAlone) {
+  const std::set<std::string> target = {"iou",         "filled", "captured",   "stray",
+                                        "filled_thin", "tilt",   "base_height"};
+  ff::StepMetrics from;
+  from.step = 1, from.time = 2, from.iou = 0.3, from.coverage = 0.4, from.max_speed = 5,
+  from.density_error = 0.6;
+  from.kinetic_energy = 7, from.control_count = 8, from.max_density = 9, from.substeps = 10;
+  from.solver_iterations = 11, from.max_density_error = 12, from.solver_capped = 13, from.filled = 0.14;
+  from.captured = 0.15, from.stray = 0.16, from.velocity_clamps = 17, from.compression = 0.18, from.tilt = 19;
+  from.base_height = 0.2, from.filled_thin = 0.21;
+  ff::StepMetrics to;
+  to.copyShapeMetrics(from);
+  const auto f = ff::metricValues(from), t = ff::metricValues(to), d = ff::metricValues(ff::StepMetrics());
+  size_t copied = 0;
+  for (size_t k = 0; k < f.size(); ++k) {
+    const std::string name = ff::kMetricColumns[k];
+    ASSERT_NE(f[k], d[k]) << name << ": the test gives every column a value of its own";
+    const bool shape = target.count(name) != 0;
+    EXPECT_EQ(t[k], shape ? f[k] : d[k]) << name;
+    copied += shape;
+  }
+  EXPECT_EQ(copied, target.size());
 }
 
 TEST(SimulationApi, SetTargetAtAnyStepAndCacheReuse) {

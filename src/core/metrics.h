@@ -39,6 +39,16 @@ struct StepMetrics {
   // Pa, the largest fluid pressure, held over the last steps (Simulation::step;
   // drives DFSPH's substeps). Not a column.
   double max_pressure = 0.0;
+
+  // Copies from `o` the columns that measure the fluid against the target
+  // (iou, filled, captured, stray, tilt, base_height, filled_thin): those that
+  // Backend::computeMetrics leaves out without `with_shape`, which
+  // Simulation::step then carries over from the last step that computed them.
+  // A new such column is added here.
+  void copyShapeMetrics(const StepMetrics& o) {
+    iou = o.iou, filled = o.filled, captured = o.captured, stray = o.stray;
+    tilt = o.tilt, base_height = o.base_height, filled_thin = o.filled_thin;
+  }
 };
 
 // The metrics as a table row: the column names (the CSV header of

@@ -68,11 +68,11 @@ class Backend {
   virtual void integrate(float dt) = 0;
   virtual int shapeMatching(float dt) = 0;
   // The metrics of the current state. Without `with_shape`, the columns that
-  // measure the fluid against the target (iou, filled, captured, stray,
-  // filled_thin, tilt, base_height) are left 0 and not computed: the step's
-  // substeps and NaN check need only the fluid's. The best rigid fit is still
-  // advanced (it is warm-started from the last step's), so the next step with
-  // them gives the same values as if every step had computed them.
+  // measure the fluid against the target (StepMetrics::copyShapeMetrics lists
+  // them) are left 0 and not computed: the step's substeps and NaN check need
+  // only the fluid's. The best rigid fit is still advanced (it is
+  // warm-started from the last step's), so the next step with them gives the
+  // same values as if every step had computed them.
   virtual StepMetrics computeMetrics(bool with_shape) = 0;
   StepMetrics computeMetrics() { return computeMetrics(true); }
 

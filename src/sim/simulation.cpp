@@ -218,11 +218,7 @@ void Simulation::step() {
     const double held = metrics_.max_pressure * std::exp2(-since * double(fp.time_step) / 0.1);
     const StepMetrics last = metrics_;
     timed(Phase::Metrics, [&] { metrics_ = backend_->computeMetrics(with_shape); });
-    if (!with_shape) {
-      metrics_.iou = last.iou, metrics_.filled = last.filled, metrics_.captured = last.captured;
-      metrics_.stray = last.stray, metrics_.filled_thin = last.filled_thin;
-      metrics_.tilt = last.tilt, metrics_.base_height = last.base_height;
-    }
+    if (!with_shape) metrics_.copyShapeMetrics(last);
     metrics_.max_pressure = std::max(metrics_.max_pressure, held);
     check(step, time, unchecked_from_ < step ? 0 : n);
     unchecked_from_ = step_;

@@ -69,8 +69,8 @@ class Simulation {
   // Whether the last step computed metrics() (else they are from an earlier step).
   bool metricsFresh() const { return metrics_fresh_; }
   // With `on`, a step computes the metrics that measure the fluid against the
-  // target (iou, filled, captured, stray, filled_thin, tilt, base_height) only
-  // after requestMetrics(); the others keep the values of the last step that
+  // target (StepMetrics::copyShapeMetrics lists them) only after
+  // requestMetrics(); the others keep the values of the last step that
   // computed them. The physics is the same: the substeps and the NaN check
   // read only the fluid's metrics (Backend::computeMetrics). Off (the
   // default): every step with metrics computes them all.

@@ -31,11 +31,14 @@ struct Kernel {
       : h(support), inv_h(1.0f / support), k(ff_cubic_coef(support)), kg(k * inv_h * inv_h) {}
 };
 
-// w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2 and the count of
-// neighbours within H of the particles b .. e-1 (6 x 8 lanes), group gi.
-// First keeps in `cache` the candidates that a lane reaches (a cheap test on
-// r^2), then sums over those alone and stores their g: the candidates left
-// out add exactly 0 to every sum (NeighbourCache).
+// w = sum_j W_ij, a = sum_j g r_ij, ssq = sum_j g^2 |r_ij|^2, the count of
+// neighbours within H and rs = sum_j g (v_i - v_j).r_ij (the divergence
+// solve's first sources, groupSources' walk on the velocities v) of the
+// particles b .. e-1 (7 x 8 lanes), group gi. First keeps in `cache` the
+// candidates that a lane reaches (a cheap test on r^2), then sums over those
+// alone and stores their g: the candidates left out add exactly 0 to every
+// sum (NeighbourCache). rs adds the same terms in the same order as
+// groupSources' walk, so it is that walk's value bit for bit.
 template <class Lanes>
 FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_t e, const Kernel& kr,
                                float* out, NeighbourCache& cache) {
@@ -44,6 +47,9 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   Group g;
   loadGroup(s, b, e, kr.h, f.grid, g, spans);
   const float *x = s.x.data(), *y = s.y.data(), *z = s.z.data();
+  const float *vx = s.vx.data(), *vy = s.vy.data(), *vz = s.vz.data();
+  const f8 uxi = simd::loadN(&vx[b], g.n, 0.0f), uyi = simd::loadN(&vy[b], g.n, 0.0f),
+           uzi = simd::loadN(&vz[b], g.n, 0.0f);
   const float h2 = kr.h * kr.h;
   const f8 reach2 = simd::splat(cache.reach2());
   size_t most = 0;
@@ -55,7 +61,7 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
       list.put(j, Lanes::any(dx * dx + dy * dy + dz * dz < reach2));
     }
   const f8 zero = simd::splat(0.0f);
-  f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero;
+  f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero, rs = zero;
   const size_t m = list.size();
   for (size_t q = 0; q < m; ++q) {
     const uint32_t j = list.index(q);
@@ -67,11 +73,12 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
     ax += gf * dx, ay += gf * dy, az += gf * dz;
     ssq += gf * gf * r2;
     cnt += r2 < h2 ? simd::splat(1.0f) : zero;
+    rs += gf * ((uxi - vx[j]) * dx + (uyi - vy[j]) * dy + (uzi - vz[j]) * dz);
     list.value(q, gf);
   }
   cache.close(gi, list);
-  const f8 sums[6] = {w, ax, ay, az, ssq, cnt};
-  for (int q = 0; q < 6; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
+  const f8 sums[7] = {w, ax, ay, az, ssq, cnt, rs};
+  for (int q = 0; q < 7; ++q) simd::storeN(out + 8 * q, sums[q], g.n);
 }
 FF_SIMD_DISPATCH(factorSums)
 
@@ -115,6 +122,7 @@ struct SourceArgs {
   const float *x, *y, *z, *rho;             // positions and densities
   const float *wall, *vax, *vay, *vaz, *q;  // the density phase's S(x) and factor parts
   const uint8_t* bulk;                      // support filled (the divergence solve)
+  const float* rs;                          // the walk's sums if known (else walks)
   float *b, *inc, *wpx, *wpy, *wpz;         // the sources, increments, walls' gradient at x + dt u
   float lo[3], hi[3];
   float vol, spacing, H, inv_h, eps, inv_rho0, dt;
@@ -123,7 +131,8 @@ struct SourceArgs {
 
 // The sources b and next increments of the particles b .. e-1 (group gi):
 // rs = sum_j g (u_i - u_j).r_ij over the cached candidates (the grid walk's
-// terms in its order), then the rate and source per lane (ff_dfsph_rate_of,
+// terms in its order; a.rs's where given: factorSums' on the same
+// velocities), then the rate and source per lane (ff_dfsph_rate_of,
 // ff_dfsph_density_source or ff_dfsph_divergence_source,
 // ff_dfsph_increment). Where a lane is near a wall
 // (ff_dfsph_wall_near_axis) its density source is
@@ -138,18 +147,22 @@ FF_SIMD_BODY void groupSourcesOf(const CpuFluid& f, const NeighbourCache& nc, si
   const float *ux = a.ux, *uy = a.uy, *uz = a.uz;
   const f8 uxi = simd::loadN(&ux[b], g.n, 0.0f), uyi = simd::loadN(&uy[b], g.n, 0.0f),
            uzi = simd::loadN(&uz[b], g.n, 0.0f);
-  const uint32_t* js = nc.neighbours(gi);
-  const float* gs = nc.values(gi);
-  const uint32_t m = nc.count(gi);
-  f8 rs = simd::splat(0.0f);
-  for (uint32_t q = 0; q < m; ++q) {
-    const uint32_t j = js[q];
-    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
-    f8 gf;
-    std::memcpy(&gf, gs + 8 * size_t(q), sizeof gf);
-    rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
-  }
   const int n = g.n;
+  f8 rs = simd::splat(0.0f);
+  if (a.rs) {
+    rs = simd::loadN(&a.rs[b], n, 0.0f);
+  } else {
+    const uint32_t* js = nc.neighbours(gi);
+    const float* gs = nc.values(gi);
+    const uint32_t m = nc.count(gi);
+    for (uint32_t q = 0; q < m; ++q) {
+      const uint32_t j = js[q];
+      const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+      f8 gf;
+      std::memcpy(&gf, gs + 8 * size_t(q), sizeof gf);
+      rs += gf * ((uxi - ux[j]) * dx + (uyi - uy[j]) * dy + (uzi - uz[j]) * dz);
+    }
+  }
   const f8 gx = simd::loadN(&a.wgx[b], n, 0.0f), gy = simd::loadN(&a.wgy[b], n, 0.0f),
            gz = simd::loadN(&a.wgz[b], n, 0.0f), alpha = simd::loadN(&a.alpha[b], n, 0.0f);
   const f8 rate = ff_dfsph_rate_of(rs, a.vol, uxi, uyi, uzi, gx, gy, gz);
@@ -230,7 +243,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   const size_t n = f.size();
   f.rho.resize(n), f.p.resize(n);
   for (auto* a : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_}) a->resize(n);
-  bulk_.resize(n);
+  bulk_.resize(n), rs_.resize(n);
   if (kd_.size() != n) kd_.assign(n, 0.0f), kv_.assign(n, 0.0f);
   const Kernel kr(p.smoothing_radius);
   if (vol_spacing_ != p.restSpacing() || vol_h_ != kr.h) {
@@ -252,24 +265,25 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
 #pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
   for (long gi = 0; gi < groups; ++gi) {
     const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
-    float sums[48];
+    float sums[56];
     factorSums(f, size_t(gi), b, e, kr, sums, cache_);
     float rho_hat[8];
     factorParts(f, b, e, sums, lo, hi, vol_spacing_, kr, vol, eps, rho_hat, out);
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       f.rho[i] = rho0 * rho_hat[l];
+      rs_[i] = sums[48 + l];
       const float share = rho_hat[l] - vol * sums[l];  // the walls' share
       bulk_[i] = uint8_t(ff_dfsph_bulk(sums[40 + l], share, full, kBulkShare));
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }
   }
-  cache_current_ = true;
+  cache_current_ = true, rs_current_ = true;
   record(stages_, "density", "dfsph factor + neighbour cache", t0);
   return !bad;
 }
 
-double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
+double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const float* rs) {
   const long n = long(f.size());
   const FluidState& s = f.s;
   SourceArgs a;
@@ -277,7 +291,7 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt) {
   a.wgx = wgx_.data(), a.wgy = wgy_.data(), a.wgz = wgz_.data(), a.alpha = alpha_.data();
   a.x = s.x.data(), a.y = s.y.data(), a.z = s.z.data(), a.rho = f.rho.data();
   a.wall = wall_.data(), a.vax = vax_.data(), a.vay = vay_.data(), a.vaz = vaz_.data(), a.q = q_.data();
-  a.bulk = bulk_.data();
+  a.bulk = bulk_.data(), a.rs = rs;
   a.b = b_.data(), a.inc = inc_.data(), a.wpx = wpx_.data(), a.wpy = wpy_.data(), a.wpz = wpz_.data();
   for (int d = 0; d < 3; ++d) a.lo[d] = lo_[d], a.hi[d] = hi_[d];
   a.vol = vol_, a.spacing = vol_spacing_, a.H = vol_h_, a.inv_h = 1.0f / vol_h_,
@@ -314,7 +328,12 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
                          int min_iterations, float warm, std::vector<float>& k) {
   const long n = long(f.size());
   const float scale = density ? dt : 1.0f;
-  double err = sources(f, density, dt);
+  // The divergence solve's first sources: on the velocities of the density
+  // phase, whose walk summed them already (factorSums), unless the particles
+  // were reordered since.
+  const bool known = !density && rs_current_;
+  rs_current_ = false;
+  double err = sources(f, density, dt, known ? rs_.data() : nullptr);
   // Warm start: the last substep's k where this one compresses too.
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) k[size_t(i)] = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
@@ -390,7 +409,7 @@ bool DfsphSolver::solve(CpuFluid& f, const FluidParams& p, const ContainerDesc& 
 }
 
 void DfsphSolver::reorder(const std::vector<uint32_t>& order) {
-  cache_current_ = false;
+  cache_current_ = false, rs_current_ = false;
   if (kd_.size() != order.size()) return;  // sized at the next density phase
   permute(kd_, order, scratch_);
   permute(kv_, order, scratch_);
@@ -416,8 +435,8 @@ void DfsphSolver::loadState(StateReader& r, size_t n) {
 
 size_t DfsphSolver::memoryBytes() const {
   size_t floats = 0;
-  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_,  &wpx_,
-                        &wpy_,   &wpz_, &kd_,  &kv_,  &b_,    &inc_, &ux_,  &uy_,  &uz_, &scratch_})
+  for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_,       &wpx_, &wpy_,
+                        &wpz_,   &kd_,  &kv_,  &b_,   &inc_,  &ux_,  &uy_,  &uz_,  &scratch_, &rs_})
     floats += v->capacity();
   return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
 }

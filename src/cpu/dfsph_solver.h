@@ -39,8 +39,9 @@ class DfsphSolver : public PressureSolver {
   int iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol, int min_iterations,
               float warm, std::vector<float>& k);
   // b_ = each particle's compression (rate) that the velocities u_ still
-  // cause, and inc_ its Jacobi increment; returns the mean of b_.
-  double sources(const CpuFluid& f, bool density, float dt);
+  // cause, and inc_ its Jacobi increment; returns the mean of b_. rs: the
+  // neighbour sums of the rate where known (rs_), else they are walked.
+  double sources(const CpuFluid& f, bool density, float dt, const float* rs = nullptr);
   // u_ += the velocity change of k, over `scale`; and total += k if given
   // (one pass over the neighbour cache).
   // The density solve pushes with the walls' gradient at the predicted
@@ -57,7 +58,12 @@ class DfsphSolver : public PressureSolver {
   std::vector<uint8_t> bulk_;                   // support filled enough for the divergence solve
   NeighbourCache cache_;                        // this substep's neighbours and gradient factors
   bool cache_current_ = false;                  // from the density phase until the grid phase reorders
-  std::vector<float> kd_, kv_;                  // warm-start state: the last solves' k
+  // The divergence sources' neighbour sums on the velocities of the density
+  // phase (factorSums), for the next divergence solve's first sources: the
+  // velocities do not change between the two phases.
+  std::vector<float> rs_;
+  bool rs_current_ = false;
+  std::vector<float> kd_, kv_;  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;
   float last_dt_ = 0.0f, rho0_ = 1.0f;

@@ -334,11 +334,23 @@ int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, 
   const bool known = !density && rs_current_;
   rs_current_ = false;
   double err = sources(f, density, dt, known ? rs_.data() : nullptr);
-  // Warm start: the last substep's k where this one compresses too.
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) k[size_t(i)] = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
-  applyVelocityChange(f, density, k, scale, nullptr);
-  err = sources(f, density, dt);
+  // Warm start: the last substep's k where this one compresses too. Where
+  // that is 0 for every particle (a divergence solve that has not iterated
+  // since k last came to 0, say), its velocity change is 0 and the sources
+  // after it are the ones above: both walks are skipped, for the same bits.
+  int warmed = 0;
+#pragma omp parallel for schedule(static) reduction(| : warmed)
+  for (long i = 0; i < n; ++i) {
+    const float ki = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
+    k[size_t(i)] = ki;
+    warmed |= ki != 0.0f ? 1 : 0;
+  }
+  if (warmed) {
+    applyVelocityChange(f, density, k, scale, nullptr);
+    err = sources(f, density, dt);
+  } else {
+    ++(density ? cold_starts_[0] : cold_starts_[1]);
+  }
   int it = 0;
   for (;;) {
     if (it >= min_iterations && err <= tol) break;

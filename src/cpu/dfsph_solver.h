@@ -29,6 +29,9 @@ class DfsphSolver : public PressureSolver {
   // For tests: the last substep's iterations of each solve.
   int lastDivergenceIterations() const { return last_div_; }
   int lastDensityIterations() const { return last_dens_; }
+  // For tests: the solves (density, divergence) whose warm start was 0 for
+  // every particle, so that its walks were skipped.
+  long coldStarts(bool density) const { return cold_starts_[density ? 0 : 1]; }
 
  private:
   // One solve on the velocities u_ (density: the constant-density solve over
@@ -66,6 +69,7 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> kd_, kv_;  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
   int last_div_ = 0, last_dens_ = 0;
+  long cold_starts_[2] = {0, 0};
   float last_dt_ = 0.0f, rho0_ = 1.0f;
   float lo_[3] = {0, 0, 0}, hi_[3] = {0, 0, 0};  // the container of this substep
 };

@@ -104,7 +104,9 @@ TEST(ShapeMatching, CoarseClustersStraightenABentBar) {
   auto bentBarResidual = [](int coarse, double* before) {
     std::vector<int> vi, vj, vk;
     ff::ControlSet s = blockSet(40, 2, 2, 0.01f, vi, vj, vk);
-    ff::buildClusters(s, vi, vj, vk, 2, 2, false, coarse);
+    ff::CoarseLevel level;
+    level.factor = coarse;
+    ff::buildClusters(s, vi, vj, vk, 2, 2, false, level);
     const float len = 0.4f;
     for (size_t p = 0; p < s.size(); ++p) {
       const float u = 2.0f * s.x0[p] / len - 1.0f;
@@ -224,7 +226,9 @@ TEST(ShapeMatching, CoarseClustersOnBarsStraightenTheBarAndLeaveTheLimb) {
   };
   auto run = [&](int coarse, bool on_bars) {
     ff::ControlSet s = s0;
-    ff::buildClusters(s, vi, vj, vk, 2, 2, false, coarse, on_bars ? &parts : nullptr);
+    using Scope = ff::CoarseLevel::Scope;
+    ff::buildClusters(s, vi, vj, vk, 2, 2, false,
+                      ff::CoarseLevel{coarse, on_bars ? Scope::Bars : Scope::WholeShape, parts});
     Result r{0.0, 0.0, 0};
     for (size_t p : limb) r.limb_clusters += s.clusters.of_start[p + 1] - s.clusters.of_start[p];
     ff::Controller ctl;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 
+#include "core/error.h"
 #include "target/local_thickness.h"
 
 namespace ff {
@@ -53,9 +55,13 @@ std::vector<std::vector<uint32_t>> connectedParts(const std::vector<uint32_t>& m
 }  // namespace
 
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
-                   const std::vector<int>& vk, int stride, int half_width, bool connected, int coarse,
-                   const std::vector<uint8_t>* shape_parts) {
+                   const std::vector<int>& vk, int stride, int half_width, bool connected,
+                   const CoarseLevel& coarse) {
   const size_t n = set.size();
+  const bool bars = coarse.scope == CoarseLevel::Scope::Bars;
+  if (bars && coarse.parts.size() != n)
+    throw Error("buildClusters: the coarse level on bars needs the part of each of the " + std::to_string(n) +
+                " particles (got " + std::to_string(coarse.parts.size()) + ")");
   std::vector<std::vector<uint32_t>> kept;
   std::vector<int> kx, ky, kz;
   std::vector<int> covered(n, 0);  // in a cluster of the fine level
@@ -66,7 +72,7 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
     std::vector<int64_t> centre_keys;
     std::vector<int> cxs, cys, czs;
     for (size_t p = 0; p < n; ++p) {
-      if (!fine && shape_parts && (*shape_parts)[p] == kPartLimb) continue;  // limbs: the fine level alone
+      if (!fine && bars && coarse.parts[p] == kPartLimb) continue;  // limbs: the fine level alone
       const int64_t w = half_width, s = stride;
       const int64_t lo[3] = {floorDiv(vi[p] - w + s - 1, s), floorDiv(vj[p] - w + s - 1, s),
                              floorDiv(vk[p] - w + s - 1, s)};
@@ -95,8 +101,8 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
       for (auto& part : parts) {
         if (part.size() < 4) continue;
         // With the shape's parts, a coarse cluster holds a bar.
-        if (!fine && shape_parts &&
-            std::none_of(part.begin(), part.end(), [&](uint32_t p) { return (*shape_parts)[p] == kPartBar; }))
+        if (!fine && bars &&
+            std::none_of(part.begin(), part.end(), [&](uint32_t p) { return coarse.parts[p] == kPartBar; }))
           continue;
         if (fine)
           for (uint32_t p : part) covered[p] = 1;
@@ -110,7 +116,7 @@ void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vecto
   // as wide and as far apart, so that a long thin part (a bar between two
   // lumps) is matched as one piece with its ends and does not bend under the
   // fluid it holds (docs/CONTROL_UNITS.md, "Coarse clusters").
-  if (coarse >= 2) level(stride * coarse, half_width * coarse, false);
+  if (coarse.factor >= 2) level(stride * coarse.factor, half_width * coarse.factor, false);
   // A particle in no cluster joins the nearest kept cluster (or, with no
   // cluster at all, every particle forms one cluster together).
   if (kept.empty() && n > 0) {

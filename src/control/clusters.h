@@ -18,12 +18,21 @@ namespace ff {
 // cube that are not connected to each other inside it (voxels touching by a
 // face, edge or corner) form separate clusters, so that two limbs, or a limb
 // and the body, that pass through one cube are not matched as one rigid piece.
-// coarse >= 2 (params.shape_matching.coarse_clusters) adds a second level of
-// clusters, coarse times the stride and half_width, after the first (a
-// particle's goal is the mean over the clusters of both levels that hold it).
+// coarse.factor >= 2 adds a second level of clusters (CoarseLevel) after the
+// first (a particle's goal is the mean over the clusters of both levels that
+// hold it).
+struct CoarseLevel {
+  // Where the coarse clusters are (params.shape_matching.coarse_bars,
+  // docs/CONTROL_UNITS.md, "Coarse clusters on bars"): over the whole shape,
+  // or only those that hold a bar particle, built without the limb particles.
+  enum class Scope { WholeShape, Bars };
+  int factor = 0;  // params.shape_matching.coarse_clusters: times the stride and half_width; < 2: none
+  Scope scope = Scope::WholeShape;
+  std::vector<uint8_t> parts;  // Bars: each particle's part of the shape (kPartLump, kPartBar, kPartLimb)
+};
 void buildClusters(ControlSet& set, const std::vector<int>& vi, const std::vector<int>& vj,
                    const std::vector<int>& vk, int stride, int half_width, bool connected = false,
-                   int coarse = 0, const std::vector<uint8_t>* shape_parts = nullptr);
+                   const CoarseLevel& coarse = CoarseLevel());
 
 // Each cluster's centre of mass over the points (x, y, z)[p], summed in
 // double in member order (the rest centres of buildClusters, the blend's

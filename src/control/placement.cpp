@@ -10,6 +10,21 @@
 
 namespace ff {
 
+namespace {
+
+// A per-voxel array of g (grid index order) at the reference particles:
+// reference[p] is the p-th inside voxel in grid index order (at most n).
+template <class T>
+std::vector<T> atReference(const VoxelGrid& g, const std::vector<T>& per_voxel, size_t n) {
+  std::vector<T> out;
+  out.reserve(n);
+  for (size_t c = 0; c < g.inside.size() && out.size() < n; ++c)
+    if (g.inside[c]) out.push_back(per_voxel[c]);
+  return out;
+}
+
+}  // namespace
+
 AdaptiveControl adaptiveControl(const ControlParams& cp, float voxel, float fluid_spacing) {
   AdaptiveControl a;
   a.on = cp.adaptive != 0;
@@ -146,13 +161,10 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
   for (size_t p = 0; p < n; ++p) set.x[p] += shift.x(), set.y[p] += shift.y(), set.z[p] += shift.z();
   set.radius_scale.assign(n, 1.0f);
   if (adaptive.on && adaptive.radius > 0.0f) {
-    // reference[p] is the p-th inside voxel in grid index order.
-    const std::vector<float> t = localThickness(g, adaptive.radius);
-    size_t p = 0;
-    for (size_t c = 0; c < g.inside.size() && p < n; ++c)
-      if (g.inside[c])
-        set.radius_scale[p++] =
-            std::fmin(adaptive.radius, std::fmax(adaptive.min_radius, t[c])) / adaptive.radius;
+    const std::vector<float> t = atReference(g, localThickness(g, adaptive.radius), n);
+    for (size_t p = 0; p < t.size(); ++p)
+      set.radius_scale[p] =
+          std::fmin(adaptive.radius, std::fmax(adaptive.min_radius, t[p])) / adaptive.radius;
   }
   int extent = 0;  // voxels along the longest axis
   for (const std::vector<int>* v : {&vi, &vj, &vk}) {
@@ -163,20 +175,17 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
                      thinRidgeVoxels(g, float(2 * sm.cluster_half_width + 1)) * kLimbLengthShare >= extent;
   const ClusterSize cs = clusterSize(sm, extent, limbs);
   // The coarse level on bars alone (docs/CONTROL_UNITS.md, "Coarse clusters
-  // on bars"): each particle's part of the shape (reference[p] is the p-th
-  // inside voxel in grid index order).
-  std::vector<uint8_t> parts;
-  // A shape with a closed loop (a ring, a letter O or A: Euler
-  // characteristic <= 0) and no limbs keeps the coarse level everywhere
+  // on bars") with coarse_bars, from each particle's part of the shape; over
+  // the whole shape without it, and on a shape with a closed loop (a ring, a
+  // letter O or A: Euler characteristic <= 0) and no limbs
   // (docs/CONTROL_UNITS.md, "Coarse clusters on loops").
+  CoarseLevel coarse;
+  coarse.factor = sm.coarse_clusters;
   if (sm.coarse_clusters >= 2 && sm.coarse_bars && (limbs || eulerCharacteristic(g) > 0)) {
-    const std::vector<uint8_t> voxel_parts = shapeParts(g, float(2 * cs.half_width + 1));
-    parts.reserve(n);
-    for (size_t c = 0; c < g.inside.size() && parts.size() < n; ++c)
-      if (g.inside[c]) parts.push_back(voxel_parts[c]);
+    coarse.parts = atReference(g, shapeParts(g, float(2 * cs.half_width + 1)), n);
+    if (coarse.parts.size() == n) coarse.scope = CoarseLevel::Scope::Bars;
   }
-  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on, sm.coarse_clusters,
-                parts.size() == n ? &parts : nullptr);
+  buildClusters(set, vi, vj, vk, cs.stride, cs.half_width, adaptive.on, coarse);
   return set;
 }
 

@@ -631,3 +631,26 @@ TEST(Params, EveryOverrideRuleNamesParametersOfTheTable) {
     EXPECT_TRUE(find(r.group, r.by)) << r.group << "." << r.by;
   }
 }
+
+// Each rule holds where its condition in words (the scene reader's warning)
+// says: BY at 0 and at 1 (each BY is a mode 0 or 1, or a number off at 0).
+TEST(Params, EveryOverrideRuleHoldsWhereItsWordsSay) {
+  for (const ff::OverrideRule& r : ff::overrideRules()) {
+    const ff::ParamInfo* by = nullptr;
+    for (const ff::ParamInfo& i : ff::paramTable())
+      if (std::string(i.group) == r.group && std::string(i.key) == r.by) by = &i;
+    ASSERT_NE(by, nullptr) << r.by;
+    ff::Params p;
+    auto holdsAt = [&](int v) {
+      void* f = by->field(p);
+      if (by->type == ff::ParamInfo::Type::Integer)
+        *static_cast<int*>(f) = v;
+      else
+        *static_cast<float*>(f) = float(v);
+      return r.holds(p);
+    };
+    const std::string words = r.condition();
+    EXPECT_EQ(holdsAt(0), words == "is 0") << r.key << " " << words;
+    EXPECT_EQ(holdsAt(1), words == "> 0" || words == "is 1") << r.key << " " << words;
+  }
+}

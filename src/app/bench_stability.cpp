@@ -20,11 +20,6 @@ std::string shortName(const ParamInfo& p) {
   return std::string(p.group) + "." + p.key;
 }
 
-double getValue(const ParamInfo& p, Params params) {
-  void* f = p.field(params);
-  return p.type == ParamInfo::Type::Integer ? double(*static_cast<int*>(f)) : double(*static_cast<float*>(f));
-}
-
 // The parameters the sweep scales: the numbers of the control and
 // shape-matching groups that act with the scene's parameters (not the force
 // units, a choice of units; with normalise on, attraction_g and velocity_rate
@@ -40,7 +35,7 @@ std::vector<const ParamInfo*> sweptParams(const std::vector<std::string>& names,
     // overrideRules: radius_spacings or time_step_fall at 0 (off) is left by the zero rule below.
     const bool inactive = !paramActs(p, params);
     // A number at 0 (off, e.g. the paper preset's blend and auto_count) stays 0 at every factor.
-    const bool zero = number && !p.mode && getValue(p, params) == 0.0;
+    const bool zero = number && !p.mode && p.number(params) == 0.0;
     if (names.empty() && number && !inactive && !zero && (g == "control" || g == "shape_matching"))
       out.push_back(&p);
   }
@@ -119,7 +114,7 @@ std::vector<StabilityPlan> stabilityPlan(const Params& params, const StabilityOp
     StabilityPlan q{p, p->mode, o.factors};
     if (q.mode) {
       q.factors.clear();
-      const double v0 = getValue(*p, params);
+      const double v0 = p->number(params);
       for (int m = int(p->min); m <= int(p->max); ++m)
         if (double(m) != v0) q.factors.push_back(double(m));
     }
@@ -164,7 +159,7 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   runs.push_back(base);
   for (const StabilityPlan& q : plan) {
     const ParamInfo* p = q.param;
-    const double v0 = getValue(*p, taken);
+    const double v0 = p->number(taken);
     for (double f : q.factors) {
       SceneDesc s = scene;
       bool clipped = false;

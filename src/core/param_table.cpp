@@ -8,8 +8,11 @@
 // (particle counts, voxel counts) are in core/resource_limits.h instead.
 #include "core/param_table.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include "core/error.h"
 
 namespace ff {
 
@@ -38,6 +41,13 @@ std::string ParamInfo::rangeText() const {
 
 bool ParamInfo::inRange(double v) const {
   return (min_open ? v > min : v >= min) && v <= max;
+}
+
+double ParamInfo::number(const Params& p) const {
+  void* f = field(const_cast<Params&>(p));  // the accessor only reads here
+  if (type == Type::Integer) return double(*static_cast<const int*>(f));
+  if (type == Type::Real) return double(*static_cast<const float*>(f));
+  throw Error(name() + ": not a number parameter");
 }
 
 const std::vector<ParamInfo>& paramTable() {
@@ -195,46 +205,49 @@ void setRealParam(const ParamInfo& info, Params& p, float v) {
 }
 
 const std::vector<OverrideRule>& overrideRules() {
+  using When = OverrideRule::When;
   static const std::vector<OverrideRule> rules = {
-      // group, key, by, sets, condition, when, note
-      {"fluid", "time_step", "time_step_fall", true, "> 0",
-       [](const Params& p) { return p.fluid.time_step_fall > 0.0f; },
+      // group, key, by, sets, when, note
+      {"fluid", "time_step", "time_step_fall", true, When::Positive,
        "it sets the frame step from the smoothing radius"},
-      {"control", "radius", "radius_spacings", true, "> 0",
-       [](const Params& p) { return p.control.radius_spacings > 0.0f; },
-       "it sets the radius at every target"},
-      {"control", "attraction", "normalise", false, "is 1",
-       [](const Params& p) { return p.control.normalise != 0; },
-       "attraction_g and velocity_rate act instead"},
-      {"control", "velocity", "normalise", false, "is 1",
-       [](const Params& p) { return p.control.normalise != 0; },
-       "attraction_g and velocity_rate act instead"},
-      {"control", "units", "normalise", false, "is 1",
-       [](const Params& p) { return p.control.normalise != 0; },
-       "attraction_g and velocity_rate act instead"},
-      {"control", "attraction_g", "normalise", false, "is 0",
-       [](const Params& p) { return p.control.normalise == 0; },
+      {"control", "radius", "radius_spacings", true, When::Positive, "it sets the radius at every target"},
+      {"control", "attraction", "normalise", false, When::One, "attraction_g and velocity_rate act instead"},
+      {"control", "velocity", "normalise", false, When::One, "attraction_g and velocity_rate act instead"},
+      {"control", "units", "normalise", false, When::One, "attraction_g and velocity_rate act instead"},
+      {"control", "attraction_g", "normalise", false, When::Zero,
        "attraction, velocity and units act instead"},
-      {"control", "velocity_rate", "normalise", false, "is 0",
-       [](const Params& p) { return p.control.normalise == 0; },
+      {"control", "velocity_rate", "normalise", false, When::Zero,
        "attraction, velocity and units act instead"},
-      {"shape_matching", "time_step", "time_step_fall", true, "> 0",
-       [](const Params& p) { return p.shape.time_step_fall > 0.0f; },
+      {"shape_matching", "time_step", "time_step_fall", true, When::Positive,
        "it sets the step from the control radius at every target"},
   };
   return rules;
 }
 
+const char* OverrideRule::condition() const {
+  return when == When::Positive ? "> 0" : when == When::One ? "is 1" : "is 0";
+}
+
+bool OverrideRule::holds(const Params& p) const {
+  const auto it = std::find_if(paramTable().begin(), paramTable().end(), [this](const ParamInfo& i) {
+    return std::strcmp(i.group, group) == 0 && std::strcmp(i.key, by) == 0;
+  });
+  if (it == paramTable().end()) throw Error(std::string("override rule: no parameter ") + group + "." + by);
+  const double v = it->number(p);
+  // A mode is an integer: 1 is "not 0" (normalise is 0 or 1).
+  return when == When::Positive ? v > 0.0 : when == When::One ? v != 0.0 : v == 0.0;
+}
+
 const OverrideRule* overriddenBy(const ParamInfo& info, const Params& p) {
   for (const OverrideRule& r : overrideRules())
-    if (std::strcmp(r.group, info.group) == 0 && std::strcmp(r.key, info.key) == 0 && r.when(p)) return &r;
+    if (std::strcmp(r.group, info.group) == 0 && std::strcmp(r.key, info.key) == 0 && r.holds(p)) return &r;
   return nullptr;
 }
 
 std::string whyNoEffect(const ParamInfo& info, const Params& p) {
   const OverrideRule* r = overriddenBy(info, p);
   if (!r) return "";
-  return std::string("while params.") + r->group + "." + r->by + " " + r->condition + " (" + r->note + ")";
+  return std::string("while params.") + r->group + "." + r->by + " " + r->condition() + " (" + r->note + ")";
 }
 
 bool paramActs(const ParamInfo& info, const Params& p) {

@@ -33,6 +33,8 @@ struct ParamInfo {
   bool mode = false;
 
   std::string name() const;  // "params.GROUP.KEY"
+  // The value of a Real or Integer parameter in `p`.
+  double number(const Params& p) const;
   // "in [MIN, MAX]" or "in (MIN, MAX]"
   std::string rangeText() const;
   bool inRange(double v) const;
@@ -50,21 +52,28 @@ const std::vector<std::string>& paramGroups();
 // written after its step (the table lists it later) turns it on again.
 void setRealParam(const ParamInfo& info, Params& p, float v);
 // One rule of which parameter overrides which: params.GROUP.KEY has no
-// effect while params.GROUP.BY meets `condition` (`when`). With `sets`, BY
-// sets KEY's value at run time (a step from its fall time, the radius from
+// effect while params.GROUP.BY meets `when`. With `sets`, BY sets KEY's
+// value at run time (a step from its fall time, the radius from
 // radius_spacings), so the value a Params holds there is derived, not given;
 // otherwise BY's mode leaves KEY unused (its value stays the user's). Every
 // reader of "is this key overridden" goes through this one table: the scene
 // reader's warning (and so a script's params and Python's set_params), the
 // scene writer, the viewer's panel and bench --stability.
 struct OverrideRule {
-  const char* group;      // "control"
-  const char* key;        // "attraction"
-  const char* by;         // the key of the same group that overrides it: "normalise"
-  bool sets;              // whether `by` sets key's value (else its mode leaves key unused)
-  const char* condition;  // when, in words: "is 1", "> 0"
-  bool (*when)(const Params&);
+  // When BY overrides KEY: BY's value is above 0 (a number that is off at 0),
+  // is the mode 1, or the mode 0.
+  enum class When { Positive, One, Zero };
+  const char* group;  // "control"
+  const char* key;    // "attraction"
+  const char* by;     // the key of the same group that overrides it: "normalise"
+  bool sets;          // whether `by` sets key's value (else its mode leaves key unused)
+  When when;
   const char* note;  // what acts instead: "attraction_g and velocity_rate act instead"
+
+  // `when` in words: "> 0", "is 1", "is 0".
+  const char* condition() const;
+  // Whether params.GROUP.BY meets `when` in `p`.
+  bool holds(const Params& p) const;
 };
 const std::vector<OverrideRule>& overrideRules();
 // The rule under which another parameter overrides `info` in `p`, or nullptr.

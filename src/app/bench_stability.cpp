@@ -81,6 +81,7 @@ StabilityRun runOne(const SceneDesc& scene, const BenchBackend& b, double second
                     Params* at_start = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   StabilityRun r;
+  r.ran = true;
   std::string note;
   Simulation sim(scene, makeBackend(b.kind, b.device, b.threads, &note));
   if (at_start) *at_start = sim.scene().params;
@@ -142,11 +143,12 @@ std::vector<StabilityRun> runStability(const SceneDesc& scene, const StabilityOp
   const double vx = explosionSpeed(scene);
   std::vector<StabilityRun> runs;
   auto report = [&](const StabilityRun& r) {
-    std::fprintf(stderr,
-                 "bench stability: %-34s %-9s = %-10g %s, %ld clamps, max speed %.2f m/s, iou %.3f, %.0f s\n",
-                 r.param.c_str(), factor(r, "x").c_str(), r.value,
-                 r.exploded ? "EXPLODED" : (r.nan.empty() ? "stable" : r.nan.c_str()), r.clamps, r.max_speed,
-                 r.final_iou, r.wall_s);
+    std::fprintf(stderr, "bench stability: %-34s %-9s = %-10g %s", r.param.c_str(), factor(r, "x").c_str(),
+                 r.value, r.exploded ? "EXPLODED" : (r.nan.empty() ? "stable" : r.nan.c_str()));
+    if (r.ran)
+      std::fprintf(stderr, ", %ld clamps, max speed %.2f m/s, iou %.3f, %.0f s", r.clamps, r.max_speed,
+                   r.final_iou, r.wall_s);
+    std::fprintf(stderr, "\n");
   };
   // Each parameter is scaled from the value the unscaled run took: a step or
   // radius that another parameter sets (overrideRules) from the one it set
@@ -199,9 +201,13 @@ void printStability(std::FILE* out, const SceneDesc& scene, const std::vector<St
     char value[64] = "-";
     if (r.param != "(none)")
       std::snprintf(value, sizeof value, "%g%s", r.value, r.clipped ? " (range limit)" : "");
-    std::fprintf(out, "| %s | %s | %s | %s | %ld | %ld | %.3f | %.3f | %.3f | %.3f |\n", r.param.c_str(),
-                 factor(r).c_str(), value, result.c_str(), r.clamps, r.clamped_steps, r.max_speed,
-                 r.max_density_error, r.final_iou, r.final_stray);
+    // A run that did not run (no effect, refused) measured nothing: "-".
+    char figures[160] = "- | - | - | - | - | -";
+    if (r.ran)
+      std::snprintf(figures, sizeof figures, "%ld | %ld | %.3f | %.3f | %.3f | %.3f", r.clamps,
+                    r.clamped_steps, r.max_speed, r.max_density_error, r.final_iou, r.final_stray);
+    std::fprintf(out, "| %s | %s | %s | %s | %s |\n", r.param.c_str(), factor(r).c_str(), value,
+                 result.c_str(), figures);
   }
 }
 

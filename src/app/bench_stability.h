@@ -25,6 +25,10 @@ struct StabilityRun {
   double value = 0.0;     // the value run (scaled, then kept in the parameter's range)
   bool clipped = false;   // the scaled value fell outside the range and was clipped to it
   bool switched = false;  // a mode parameter, run in another mode (value; factor unused)
+  // Whether it ran: not where the parameter has no effect (another overrides
+  // it) or validateParams refused the values (`nan` says which); the figures
+  // below are then not measured.
+  bool ran = false;
   long steps = 0;
   std::string nan;  // empty, or where a value became NaN or Inf
   double max_speed = 0.0, max_density_error = 0.0;

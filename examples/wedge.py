@@ -52,8 +52,8 @@ def main():
     rows = []
     for v in values:
         # From the start, as in a scene file: set_params after the first
-        # target is placed would leave what placement reads (control.adaptive,
-        # shape_matching.blend_first, the fluid's spacing) at the scene's value.
+        # target is placed would leave what only the first placement reads
+        # (shape_matching.blend_first, the fluid's spacing) at the scene's value.
         sim = flowform.Simulation(a.scene, backend=a.backend, threads=a.threads, params=params_overlay(a.param, v))
         m = sim.run(steps=a.steps) if a.steps > 0 else sim.run(seconds=a.seconds)
         n = len(m["iou"])

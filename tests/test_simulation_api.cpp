@@ -107,21 +107,29 @@ TEST(SimulationApi, AParameterActsWhereParamActsSaysSo) {
 // (the clusters are centred on the target's voxels, whatever the fluid).
 // Other shape-matching fields keep the clusters as they are. Before, only
 // the viewer re-placed them; elsewhere they waited for the next target.
+// The control set of `sim`, read back from its backend.
+ff::ControlSet controlOf(ff::Simulation& sim) {
+  ff::ControlSet set;
+  ff::ControlFields fields;
+  sim.backend().readControl(set, fields);
+  return set;
+}
+
+// The control set that a run of `s` started with `params` places first.
+ff::ControlSet firstControl(ff::SceneDesc s, const ff::Params& params) {
+  s.params = params;
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(1));
+  return controlOf(sim);
+}
+
 TEST(SimulationApi, AClusterChangeTakesEffectAtOnce) {
   ff::SceneDesc s = smallScene();
   s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Sphere, 400)});
-  auto clusters = [](ff::Simulation& sim) {
-    ff::ControlSet set;
-    ff::ControlFields fields;
-    sim.backend().readControl(set, fields);
+  auto count = [](const ff::ControlSet& set) {
     return set.clusters.start.empty() ? size_t(0) : set.clusters.start.size() - 1;
   };
-  auto fresh = [&](const ff::Params& p) {
-    ff::SceneDesc t = s;
-    t.params = p;
-    ff::Simulation sim(t, std::make_unique<ff::CpuBackend>(1));
-    return clusters(sim);
-  };
+  auto clusters = [&](ff::Simulation& sim) { return count(controlOf(sim)); };
+  auto fresh = [&](const ff::Params& p) { return count(firstControl(s, p)); };
   ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(1));
   sim.step();
   const size_t before = clusters(sim);
@@ -141,6 +149,37 @@ TEST(SimulationApi, AClusterChangeTakesEffectAtOnce) {
   EXPECT_EQ(clusters(sim), fresh(p));
   sim.step();
   EXPECT_EQ(clusters(sim), fresh(p));
+}
+
+// control.adaptive, and with it on the control radius, are read as the
+// control particles are placed (each one's radius_scale, a share of the
+// radius; its clusters). A change through Simulation::setParams re-places
+// them at once: the run then has the radius scales a run that started with
+// those params has. Before, they waited for the next target.
+TEST(SimulationApi, AnAdaptiveControlChangeTakesEffectAtOnce) {
+  ff::SceneDesc s = smallScene();
+  s.params.control.radius = 0.08f;  // wider than the torus's tube: its radius scales are below 1
+  s.schedule.push_back({0.0, fftest::target(ff::TargetKind::Torus, 400)});
+  auto scales = [](ff::Simulation& sim) { return controlOf(sim).radius_scale; };
+  auto fresh = [&](const ff::Params& p) { return firstControl(s, p).radius_scale; };
+  ff::Simulation sim(s, std::make_unique<ff::CpuBackend>(1));
+  sim.step();
+  const std::vector<float> one = scales(sim);
+  ASSERT_FALSE(one.empty());
+  EXPECT_EQ(*std::min_element(one.begin(), one.end()), 1.0f);
+  ff::Params p = sim.scene().params;
+  p.control.adaptive = 1;
+  sim.setParams(p);
+  const std::vector<float> own = scales(sim);
+  EXPECT_LT(*std::min_element(own.begin(), own.end()), 1.0f);
+  EXPECT_EQ(own, fresh(p));
+  p.control.radius = 0.1f;
+  sim.setParams(p);
+  EXPECT_NE(scales(sim), own);
+  EXPECT_EQ(scales(sim), fresh(p));
+  p.control.adaptive = 0;
+  sim.setParams(p);
+  EXPECT_EQ(scales(sim), one);
 }
 
 TEST(SimulationApi, ScheduleChangesTargetsAtTheirTimes) {

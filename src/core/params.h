@@ -133,6 +133,13 @@ struct ControlParams {
   // 0 = one radius and cube clusters, as the paper (the default: measured,
   // docs/RESULTS.md, "Thin features").
   int adaptive = 0;
+  // Whether `o` places the same control particles: the fields read as they
+  // are placed (adaptive; with it on, the radius, which each particle's
+  // radius_scale is a share of). A change re-places the control particles at
+  // once (Simulation::setParams), as a change of the clusters does.
+  bool samePlacement(const ControlParams& o) const {
+    return adaptive == o.adaptive && (adaptive == 0 || radius == o.radius);
+  }
   // Derived control count (docs/CONTROL_UNITS.md, "How many control
   // particles"): > 0 caps the control particles a target without
   // control_count or voxel_size gets at this many for the scene's whole fluid

@@ -385,13 +385,17 @@ void Simulation::setRegion(const RegionDesc& region) {
 void Simulation::setParams(const Params& params) {
   validateParams(params, "parameters");
   if (target_) checkClusterMemory(params.shape, target_->reference.size(), "parameters");
-  const bool same_clusters = scene_.params.shape.sameClusters(params.shape);
+  const Params before = scene_.params;
   scene_.params = withControlRadius(params, target_ ? target_->grid.voxel : 0.0f);
   scene_.params.fluid.setFrameStep();
   backend_->setParams(scene_.params);
-  // Clusters are built when control particles are placed: re-placed, so
-  // that a new cluster size or coarse level takes effect now.
-  if (target_ && !same_clusters) makeTarget(target_spec_, false);
+  // Clusters and the adaptive radii are made when control particles are
+  // placed: re-placed, so that a new cluster size, coarse level, adaptive
+  // control or (with it) radius takes effect now. The radius compared is the
+  // one that acts (radius_spacings may set it).
+  const bool same =
+      before.shape.sameClusters(scene_.params.shape) && before.control.samePlacement(scene_.params.control);
+  if (target_ && !same) makeTarget(target_spec_, false);
 }
 
 Params Simulation::withControlRadius(Params params, float voxel) {

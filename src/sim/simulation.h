@@ -39,7 +39,8 @@ class Simulation {
   // Changes the controlled region; the current target is regenerated in it.
   void setRegion(const RegionDesc& region);
   // Changes parameters live. A change of the clusters
-  // (ShapeMatchParams::sameClusters) re-places the control particles over the
+  // (ShapeMatchParams::sameClusters) or of adaptive control
+  // (ControlParams::samePlacement) re-places the control particles over the
   // current fluid, as a change to the same target does.
   void setParams(const Params& params);
 

@@ -77,7 +77,7 @@ void ViewerSession::setRegion(const RegionDesc& region) {
 
 void ViewerSession::setParams(const Params& params) {
   validateParams(params, "");
-  sim_->setParams(params);  // a new cluster size re-places the control particles (sameClusters)
+  sim_->setParams(params);  // new clusters or adaptive control re-place the control particles
 }
 
 SceneDesc ViewerSession::currentScene() const {

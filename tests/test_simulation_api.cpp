@@ -254,7 +254,7 @@ TEST(SimulationApi, CopyShapeMetricsCopiesTheTargetsColumnsAlone) {
   const auto f = ff::metricValues(from), t = ff::metricValues(to), d = ff::metricValues(ff::StepMetrics());
   size_t copied = 0;
   for (size_t k = 0; k < f.size(); ++k) {
-    const std::string name = ff::kMetricColumns[k];
+    const std::string name = ff::kMetricColumns[k].name;
     ASSERT_NE(f[k], d[k]) << name << ": the test gives every column a value of its own";
     const bool shape = target.count(name) != 0;
     EXPECT_EQ(t[k], shape ? f[k] : d[k]) << name;

@@ -90,7 +90,8 @@ int runScene(const RunOptions& o) {
               sim.backend().name().c_str(), sim.backend().device().c_str(), steps, dt);
 
   MetricsCsv csv;
-  const std::vector<std::string> columns(kMetricColumns.begin(), kMetricColumns.end());
+  std::vector<std::string> columns;
+  for (const MetricColumn& c : kMetricColumns) columns.push_back(c.name);
   if (!o.metrics.empty() && first > 0)
     csv.resume(o.metrics, columns, double(first));
   else if (!o.metrics.empty())

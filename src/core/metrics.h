@@ -51,14 +51,35 @@ struct StepMetrics {
   }
 };
 
-// The metrics as a table row: the column names (the CSV header of
-// `flowform run --metrics`, the keys of the Python module's arrays) and the
-// values of one step, in the same order. New columns go at the end.
-inline constexpr std::array<const char*, 21> kMetricColumns = {
-    "step",           "time",          "iou",         "coverage", "max_speed",         "density_error",
-    "kinetic_energy", "control_count", "max_density", "substeps", "solver_iterations", "max_density_error",
-    "solver_capped",  "filled",        "captured",    "stray",    "velocity_clamps",   "compression",
-    "tilt",           "base_height",   "filled_thin"};
+// The metrics as a table row: the columns (their names are the CSV header of
+// `flowform run --metrics` and the keys of the Python module's arrays) and the
+// values of one step, in the same order. New columns go at the end. A column
+// that counts (an integer field) is an int in Python.
+struct MetricColumn {
+  const char* name;
+  bool count;
+};
+inline constexpr std::array<MetricColumn, 21> kMetricColumns = {{{"step", true},
+                                                                 {"time", false},
+                                                                 {"iou", false},
+                                                                 {"coverage", false},
+                                                                 {"max_speed", false},
+                                                                 {"density_error", false},
+                                                                 {"kinetic_energy", false},
+                                                                 {"control_count", true},
+                                                                 {"max_density", false},
+                                                                 {"substeps", true},
+                                                                 {"solver_iterations", true},
+                                                                 {"max_density_error", false},
+                                                                 {"solver_capped", true},
+                                                                 {"filled", false},
+                                                                 {"captured", false},
+                                                                 {"stray", false},
+                                                                 {"velocity_clamps", true},
+                                                                 {"compression", false},
+                                                                 {"tilt", false},
+                                                                 {"base_height", false},
+                                                                 {"filled_thin", false}}};
 
 inline std::array<double, kMetricColumns.size()> metricValues(const StepMetrics& m) {
   return {double(m.step),

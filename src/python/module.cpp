@@ -148,7 +148,11 @@ class PySimulation {
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
     py::dict out;
-    for (size_t k = 0; k < cols.size(); ++k) out[ff::kMetricColumns[k]] = column(cols[k]);
+    for (size_t k = 0; k < cols.size(); ++k) {
+      const ff::MetricColumn& c = ff::kMetricColumns[k];
+      out[c.name] = c.count ? py::object(column(std::vector<int64_t>(cols[k].begin(), cols[k].end())))
+                            : py::object(column(cols[k]));
+    }
     return out;
   }
 
@@ -169,7 +173,10 @@ class PySimulation {
   py::dict metrics() const {
     py::dict out;
     const auto v = ff::metricValues(sim_->metrics());
-    for (size_t k = 0; k < v.size(); ++k) out[ff::kMetricColumns[k]] = v[k];
+    for (size_t k = 0; k < v.size(); ++k) {
+      const ff::MetricColumn& c = ff::kMetricColumns[k];
+      out[c.name] = c.count ? py::object(py::int_(int64_t(v[k]))) : py::object(py::float_(v[k]));
+    }
     return out;
   }
 

@@ -87,6 +87,25 @@ class ModuleTest(unittest.TestCase):
         self.assertEqual(sim.target, "sphere")
         self.assertEqual(sim.metrics["step"], 3)
 
+    def test_counts_are_integers(self):
+        # The metrics that count (docs/METRICS.md) are Python ints and int64
+        # arrays, the others floats and float64 arrays.
+        counts = {"step", "control_count", "substeps", "solver_iterations", "solver_capped", "velocity_clamps"}
+        sim = flowform.Simulation(SCENE, backend="cpu", threads=2)
+        hist = sim.run(steps=2)
+        m = sim.metrics
+        self.assertTrue(counts <= set(m), sorted(m))
+        for name, value in m.items():
+            if name in counts:
+                self.assertIs(type(value), int, name)
+                self.assertEqual(hist[name].dtype, np.int64, name)
+            else:
+                self.assertIs(type(value), float, name)
+                self.assertEqual(hist[name].dtype, np.float64, name)
+        self.assertEqual(m["step"], 2)
+        self.assertEqual(hist["step"].tolist(), [1, 2])
+        self.assertGreater(m["control_count"], 0)
+
     def test_a_bad_scene_names_the_file_and_the_key(self):
         bad = os.path.join(self.dir, "bad.json")
         with open(bad, "w") as f:

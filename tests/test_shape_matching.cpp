@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "control/clusters.h"
 #include "control/controller.h"
@@ -329,4 +330,156 @@ TEST(ShapeMatching, CoarseClustersCoverAShapeWithALoop) {
   EXPECT_EQ(ring_bars, ring_whole);
   EXPECT_GT(ring_bars.first.size(), ring_one.first.size());
   EXPECT_EQ(clusters(ff::TargetKind::Sphere, 3, 1), clusters(ff::TargetKind::Sphere, 0, 1));
+}
+
+namespace {
+
+// An extruded block letter as voxels: strokes (x0, y0, x1, y1) in voxels of
+// the (x, y) plane drawn with a round pen of radius `pen`, `depth` voxels
+// deep, every length times `scale`, with two outside voxels around it.
+struct Stroke {
+  float x0, y0, x1, y1;
+};
+ff::VoxelGrid letterGrid(const std::vector<Stroke>& strokes, float pen, int depth, int scale) {
+  float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+  for (const Stroke& s : strokes)
+    for (int d = 0; d < 2; ++d) {
+      const float a = d ? s.y0 : s.x0, b = d ? s.y1 : s.x1;
+      lo[d] = std::min({lo[d], a - pen, b - pen}), hi[d] = std::max({hi[d], a + pen, b + pen});
+    }
+  ff::VoxelGrid g;
+  g.voxel = 0.01f / float(scale);
+  g.nx = int(std::ceil((hi[0] - lo[0]) * float(scale))) + 4;
+  g.ny = int(std::ceil((hi[1] - lo[1]) * float(scale))) + 4;
+  g.nz = depth * scale + 4;
+  g.inside.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      // The voxel centre in the strokes' unscaled coordinates.
+      const float px = lo[0] + (float(i - 2) + 0.5f) / float(scale),
+                  py = lo[1] + (float(j - 2) + 0.5f) / float(scale);
+      bool in = false;
+      for (const Stroke& s : strokes) {
+        const float ax = s.x1 - s.x0, ay = s.y1 - s.y0, len2 = ax * ax + ay * ay;
+        const float t = std::clamp(((px - s.x0) * ax + (py - s.y0) * ay) / len2, 0.0f, 1.0f);
+        const float dx = px - (s.x0 + t * ax), dy = py - (s.y0 + t * ay);
+        in = in || dx * dx + dy * dy <= pen * pen;
+      }
+      for (int k = 2; in && k < g.nz - 2; ++k) g.inside[g.index(i, j, k)] = 1;
+    }
+  return g;
+}
+
+// How many strokes leave the point of the letter where most meet, from its
+// strokes alone: at each stroke's ends and at each crossing of two strokes,
+// a stroke that ends there adds one branch and a stroke that passes through
+// it two.
+int branchesFromStrokes(const std::vector<Stroke>& strokes) {
+  std::vector<std::array<float, 2>> points;
+  for (size_t a = 0; a < strokes.size(); ++a) {
+    const Stroke& s = strokes[a];
+    points.push_back({s.x0, s.y0}), points.push_back({s.x1, s.y1});
+    points.push_back({0.5f * (s.x0 + s.x1), 0.5f * (s.y0 + s.y1)});  // a point along it
+    for (size_t b = a + 1; b < strokes.size(); ++b) {
+      const Stroke& u = strokes[b];
+      const float rx = s.x1 - s.x0, ry = s.y1 - s.y0, qx = u.x1 - u.x0, qy = u.y1 - u.y0;
+      const float den = rx * qy - ry * qx;
+      if (std::fabs(den) < 1e-6f) continue;
+      const float t = ((u.x0 - s.x0) * qy - (u.y0 - s.y0) * qx) / den;
+      const float v = ((u.x0 - s.x0) * ry - (u.y0 - s.y0) * rx) / den;
+      if (t >= 0.0f && t <= 1.0f && v >= 0.0f && v <= 1.0f) points.push_back({s.x0 + t * rx, s.y0 + t * ry});
+    }
+  }
+  int most = 0;
+  for (const auto& p : points) {
+    int n = 0;
+    for (const Stroke& s : strokes) {
+      const float ax = s.x1 - s.x0, ay = s.y1 - s.y0, len2 = ax * ax + ay * ay;
+      const float t = ((p[0] - s.x0) * ax + (p[1] - s.y0) * ay) / len2;
+      const float dx = p[0] - (s.x0 + t * ax), dy = p[1] - (s.y0 + t * ay);
+      if (t < -1e-4f || t > 1.0f + 1e-4f || dx * dx + dy * dy > 1e-4f) continue;
+      n += (t < 1e-4f || t > 1.0f - 1e-4f) ? 1 : 2;
+    }
+    most = std::max(most, n);
+  }
+  return most;
+}
+
+ff::TargetShape targetOf(const ff::VoxelGrid& g) {
+  ff::TargetShape t;
+  t.grid = g;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i)
+        if (g.inside[g.index(i, j, k)]) t.reference.push_back(g.center(i, j, k));
+  t.shape_volume = t.voxel_volume();
+  return t;
+}
+
+const std::vector<Stroke> kLetterX = {{0, 0, 24, 30}, {0, 30, 24, 0}};
+const std::vector<Stroke> kLetterY = {{0, 30, 12, 15}, {24, 30, 12, 15}, {12, 15, 12, 0}};
+const std::vector<Stroke> kLetterT = {{0, 30, 24, 30}, {12, 30, 12, 0}};
+const std::vector<Stroke> kLetterL = {{0, 0, 0, 30}, {0, 0, 20, 0}};
+const std::vector<Stroke> kLetterI = {{0, 0, 0, 30}};
+
+}  // namespace
+
+// The branches that meet at one point (docs/CONTROL_UNITS.md, "Coarse
+// clusters on crossings"), against the strokes each letter is drawn with:
+// X 4, Y and T 3, L (a corner) and I 2; the same at twice the resolution. A
+// thin plate (a ring around any centre) has 1, a ball smaller than the shell
+// 0, a plate with a hole (a loop, no junction) 1 or 2.
+TEST(ShapeParts, BranchesCountTheStrokesThatMeet) {
+  ASSERT_EQ(branchesFromStrokes(kLetterX), 4);
+  ASSERT_EQ(branchesFromStrokes(kLetterY), 3);
+  ASSERT_EQ(branchesFromStrokes(kLetterT), 3);
+  ASSERT_EQ(branchesFromStrokes(kLetterL), 2);
+  ASSERT_EQ(branchesFromStrokes(kLetterI), 2);
+  for (int scale : {1, 2})
+    for (const auto* letter : {&kLetterX, &kLetterY, &kLetterT, &kLetterL, &kLetterI})
+      EXPECT_EQ(ff::mostBranches(letterGrid(*letter, 3.0f, 7, scale)), branchesFromStrokes(*letter))
+          << "scale " << scale << ", strokes " << letter->size();
+  auto solid = [](int n, const std::function<bool(float, float, float)>& in) {
+    ff::VoxelGrid g;
+    g.voxel = 0.01f, g.nx = g.ny = g.nz = n + 4;
+    g.inside.assign(size_t(g.nx) * size_t(g.ny) * size_t(g.nz), 0);
+    for (int k = 2; k < n + 2; ++k)
+      for (int j = 2; j < n + 2; ++j)
+        for (int i = 2; i < n + 2; ++i) {
+          const float c = 0.5f * float(n);  // the centre, in voxels from the solid's corner
+          g.inside[g.index(i, j, k)] =
+              in(float(i - 2) + 0.5f - c, float(j - 2) + 0.5f - c, float(k - 2) + 0.5f - c);
+        }
+    return g;
+  };
+  EXPECT_EQ(ff::mostBranches(
+                solid(30, [](float x, float y,
+                             float z) { return std::fabs(y) < 1.5f && x * x + z * z < 15.0f * 15.0f; })),
+            1);
+  EXPECT_EQ(
+      ff::mostBranches(solid(20, [](float x, float y, float z) { return x * x + y * y + z * z < 100.0f; })),
+      0);
+}
+
+// Coarse clusters on crossings: an X with no limbs (shorter than 38 voxels)
+// and no loop gets the coarse level over the whole shape with coarse_bars 1,
+// the clusters of coarse_bars 0 and more than one level's; an L (its two
+// strokes meet at a corner, no junction) keeps one level. Without the rule
+// the X keeps one level and the test fails.
+TEST(ShapeMatching, CoarseClustersCoverAShapeWhoseStrokesCross) {
+  auto clusters = [](const std::vector<Stroke>& letter, int coarse, int bars) {
+    const ff::TargetShape t = targetOf(letterGrid(letter, 3.0f, 7, 1));
+    ff::ShapeMatchParams sm;
+    sm.coarse_clusters = coarse, sm.coarse_bars = bars;
+    const ff::ControlSet s = ff::placeControlParticles(t, t.boundsMin(), t.boundsMax(), sm,
+                                                       ff::Vec3(-1, -1, -1), ff::Vec3(1, 1, 1));
+    return std::make_pair(s.clusters.start, s.clusters.members);
+  };
+  const auto x_one = clusters(kLetterX, 0, 1), x_rule = clusters(kLetterX, 3, 1),
+             x_whole = clusters(kLetterX, 3, 0);
+  EXPECT_EQ(x_rule, x_whole);
+  EXPECT_GT(x_rule.first.size(), x_one.first.size());
+  EXPECT_EQ(clusters(kLetterL, 3, 1), clusters(kLetterL, 0, 1));
+  EXPECT_NE(clusters(kLetterL, 3, 0),
+            clusters(kLetterL, 0, 1));  // the L does have coarse clusters to leave out
 }

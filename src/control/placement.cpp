@@ -178,10 +178,13 @@ ControlSet placeControlParticles(const TargetShape& target, const Vec3& lo, cons
   // on bars") with coarse_bars, from each particle's part of the shape; over
   // the whole shape without it, and on a shape with a closed loop (a ring, a
   // letter O or A: Euler characteristic <= 0) and no limbs
-  // (docs/CONTROL_UNITS.md, "Coarse clusters on loops").
+  // (docs/CONTROL_UNITS.md, "Coarse clusters on loops"), or whose strokes
+  // meet at a junction of three or more branches and no limbs (an X, Y or
+  // H: "Coarse clusters on crossings").
   CoarseLevel coarse;
   coarse.factor = sm.coarse_clusters;
-  if (sm.coarse_clusters >= 2 && sm.coarse_bars && (limbs || eulerCharacteristic(g) > 0)) {
+  if (sm.coarse_clusters >= 2 && sm.coarse_bars &&
+      (limbs || (eulerCharacteristic(g) > 0 && mostBranches(g) < kJunctionBranches))) {
     coarse.parts = atReference(g, shapeParts(g, float(2 * cs.half_width + 1)), n);
     if (coarse.parts.size() == n) coarse.scope = CoarseLevel::Scope::Bars;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <set>
 
@@ -257,6 +258,89 @@ long eulerCharacteristic(const VoxelGrid& g) {
     chi += (dim % 2 == 0 ? 1 : -1) * count;
   }
   return chi;
+}
+
+int mostBranches(const VoxelGrid& g) {
+  const std::vector<float> d2 = squaredDistanceToOutside(g);
+  float most = 0.0f;
+  for (size_t q = 0; q < d2.size(); ++q)
+    if (g.inside[q]) most = std::max(most, d2[q]);
+  if (!(most > 0.0f)) return 0;
+  const float depth = std::sqrt(most), outer = kBranchShellDepths * depth + 1.0f, inner = outer - 2.0f;
+  const float outer2 = outer * outer, inner2 = inner * inner, deep2 = 0.25f * most;
+  const int w = int(std::ceil(outer)), side = 2 * w + 1;
+  // Per centre, over the cube of side 2 w + 1 around it: reached, and of the
+  // reached shell voxels the piece they belong to.
+  std::vector<uint8_t> reached(size_t(side) * size_t(side) * size_t(side), 0);
+  std::vector<int> piece(reached.size(), -1);
+  std::vector<int> stack;
+  int best = 0;
+  for (int k = 0; k < g.nz; k += 2)
+    for (int j = 0; j < g.ny; j += 2)
+      for (int i = 0; i < g.nx; i += 2) {
+        if (!g.inside[g.index(i, j, k)] || d2[g.index(i, j, k)] < deep2) continue;
+        const auto local = [&](int a, int b, int c) {
+          return (a - i + w) + side * ((b - j + w) + side * (c - k + w));
+        };
+        const auto in_ball = [&](int a, int b, int c) {
+          if (a < 0 || b < 0 || c < 0 || a >= g.nx || b >= g.ny || c >= g.nz) return false;
+          const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
+          return dx * dx + dy * dy + dz * dz <= outer2 && g.inside[g.index(a, b, c)] != 0;
+        };
+        const auto shell = [&](int a, int b, int c) {
+          const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
+          return dx * dx + dy * dy + dz * dz > inner2;
+        };
+        // The flood from the centre inside the ball.
+        std::vector<int> todo{local(i, j, k)}, seen{local(i, j, k)};
+        reached[size_t(todo[0])] = 1;
+        std::vector<int> shell_voxels;
+        while (!todo.empty()) {
+          const int q = todo.back();
+          todo.pop_back();
+          const int a = q % side - w + i, b = (q / side) % side - w + j, c = q / (side * side) - w + k;
+          if (shell(a, b, c)) shell_voxels.push_back(q);
+          for (int dc = -1; dc <= 1; ++dc)
+            for (int db = -1; db <= 1; ++db)
+              for (int da = -1; da <= 1; ++da) {
+                if (!in_ball(a + da, b + db, c + dc)) continue;
+                const int r = local(a + da, b + db, c + dc);
+                if (!reached[size_t(r)]) reached[size_t(r)] = 1, todo.push_back(r), seen.push_back(r);
+              }
+        }
+        // The reached shell voxels' pieces; a piece is a branch if it leaves
+        // the ball (one of its voxels has an inside neighbour outside it).
+        int pieces = 0, branches = 0;
+        for (const int s0 : shell_voxels) {
+          if (piece[size_t(s0)] >= 0) continue;
+          piece[size_t(s0)] = pieces, stack.assign(1, s0);
+          bool leaves = false;
+          while (!stack.empty()) {
+            const int q = stack.back();
+            stack.pop_back();
+            const int a = q % side - w + i, b = (q / side) % side - w + j, c = q / (side * side) - w + k;
+            for (int dc = -1; dc <= 1; ++dc)
+              for (int db = -1; db <= 1; ++db)
+                for (int da = -1; da <= 1; ++da) {
+                  const int a2 = a + da, b2 = b + db, c2 = c + dc;
+                  if (a2 < 0 || b2 < 0 || c2 < 0 || a2 >= g.nx || b2 >= g.ny || c2 >= g.nz ||
+                      !g.inside[g.index(a2, b2, c2)])
+                    continue;
+                  if (!in_ball(a2, b2, c2)) {
+                    leaves = true;
+                    continue;
+                  }
+                  const int r = local(a2, b2, c2);
+                  if (reached[size_t(r)] && piece[size_t(r)] < 0 && shell(a2, b2, c2))
+                    piece[size_t(r)] = pieces, stack.push_back(r);
+                }
+          }
+          ++pieces, branches += leaves;
+        }
+        best = std::max(best, branches);
+        for (const int q : seen) reached[size_t(q)] = 0, piece[size_t(q)] = -1;
+      }
+  return best;
 }
 
 }  // namespace ff

@@ -69,4 +69,21 @@ std::vector<uint8_t> shapeParts(const VoxelGrid& g, float min_length);
 // raises it by one.
 long eulerCharacteristic(const VoxelGrid& g);
 
+// The most branches that meet at one point of the shape (docs/CONTROL_UNITS.md,
+// "Coarse clusters on crossings"): for each centre, an inside voxel at least
+// half the shape's largest depth D deep (every second voxel along each axis),
+// the inside voxels reached from it without leaving the ball of radius
+// R = kBranchShellDepths D + 1 are flooded (26-connected), and the reached
+// voxels farther than R - 2 from the centre fall into 26-connected pieces:
+// each is a branch that leaves the ball. A point along a stroke or a bar has
+// 2, a free end 1, a plate (a ring around the centre) 1, a lump wider than
+// the ball 0, the crossing of an X 4, the junction of a Y, K or T 3. Branches
+// shorter than about R from the centre (a bump, a serif) do not reach the
+// shell, and a stroke that bends back into the ball (an S) is not reached
+// from the centre inside it. Relative to D, so a scaled or finer voxelised
+// shape has the same count.
+constexpr float kBranchShellDepths = 3.0f;
+constexpr int kJunctionBranches = 3;  // a junction: at least this many branches
+int mostBranches(const VoxelGrid& g);
+
 }  // namespace ff

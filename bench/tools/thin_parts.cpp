@@ -14,7 +14,8 @@
 // voxel, farther, and stray (farther than the control radius from every control
 // particle: how far, how high); the heights of the control particles and of the
 // fluid; the unfilled control particles (s > 1/2) and their distance from their
-// shape-matching goals.
+// shape-matching goals, and how far the control particles are from their
+// best rigid fit (how bent the control set is), by fifth of the height.
 //   ./build/flowform_thin_parts --faults SECONDS SCENE.json...
 #include <algorithm>
 #include <cmath>
@@ -282,6 +283,26 @@ void faults(double seconds, const char* path) {
       "  control: %ld unfilled (s > 1/2) of %zu; off their goals: mean %.2f cm, max %.2f cm; radius %.2f "
       "cm, voxel %.2f cm\n",
       unfilled, set.size(), 100 * off_sum / double(set.size()), 100 * off_max, 100 * rc, 100 * voxel);
+  // How far the control set is bent: each control particle's distance from
+  // its place at the best rigid fit, by fifth of the rest shape's height.
+  {
+    const auto [y0lo, y0hi] = std::minmax_element(set.y0.begin(), set.y0.end());
+    double dev_sum[5] = {}, dev_max = 0.0, all = 0.0;
+    long dev_n[5] = {};
+    for (size_t c = 0; c < set.size(); ++c) {
+      const ff_float3 w = ff_mat3_mul_vec(
+          r, FF_F3(set.x0[c] - frame.rest_c[0], set.y0[c] - frame.rest_c[1], set.z0[c] - frame.rest_c[2]));
+      const double dx = w.x + frame.c[0] - set.x[c], dy = w.y + frame.c[1] - set.y[c],
+                   dz = w.z + frame.c[2] - set.z[c], d = std::sqrt(dx * dx + dy * dy + dz * dz);
+      const int f = std::min(4, int(5.0 * (set.y0[c] - *y0lo) / double(*y0hi - *y0lo + 1e-9f)));
+      dev_sum[f] += d, ++dev_n[f], all += d, dev_max = std::max(dev_max, d);
+    }
+    std::printf(
+        "  control off its best rigid fit: mean %.2f cm, max %.2f cm; by fifth of the height (top first):",
+        100 * all / double(set.size()), 100 * dev_max);
+    for (int f = 4; f >= 0; --f) std::printf(" %.2f", dev_n[f] ? 100 * dev_sum[f] / double(dev_n[f]) : 0.0);
+    std::printf(" cm\n");
+  }
   std::fflush(stdout);
 }
 

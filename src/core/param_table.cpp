@@ -183,7 +183,8 @@ const std::vector<ParamInfo>& paramTable() {
       {"shape_matching", "coarse_bars", T::Integer, 0, 1, false,
        "1: the coarse clusters only around a bar that joins two lumps of the shape, never on a limb "
        "(a shape without such a bar keeps one level, but one with a closed loop and no limbs gets it "
-       "everywhere); 0: over the whole shape",
+       "everywhere, as does one whose strokes meet at a junction of three or more branches and that has no "
+       "limbs); 0: over the whole shape",
        FF_FIELD(shape.coarse_bars), kMode},
   };
   return table;

@@ -215,7 +215,10 @@ struct ShapeMatchParams {
   int coarse_clusters = 0;
   // Where the coarse level acts (docs/CONTROL_UNITS.md, "Coarse clusters on
   // bars"): 1, only around a bar that joins two lumps of the shape
-  // (shapeParts), a limb never; a shape without such a bar keeps one level.
+  // (shapeParts), a limb never; a shape without such a bar keeps one level,
+  // except one with no limbs and a closed loop ("Coarse clusters on loops")
+  // or a junction of three or more strokes ("Coarse clusters on crossings"),
+  // which gets it everywhere.
   // 0: over the whole shape (the paper has no coarse level).
   int coarse_bars = 0;
   // The first target's blend time (s) for control radius `radius` under gravity `g`.

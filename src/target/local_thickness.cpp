@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <set>
 
@@ -270,10 +269,10 @@ int mostBranches(const VoxelGrid& g) {
   const float outer2 = outer * outer, inner2 = inner * inner, deep2 = 0.25f * most;
   const int w = int(std::ceil(outer)), side = 2 * w + 1;
   // Per centre, over the cube of side 2 w + 1 around it: reached, and of the
-  // reached shell voxels the piece they belong to.
+  // reached shell voxels the piece they belong to (reset after each centre).
   std::vector<uint8_t> reached(size_t(side) * size_t(side) * size_t(side), 0);
   std::vector<int> piece(reached.size(), -1);
-  std::vector<int> stack;
+  std::vector<int> todo, seen, shell_voxels, stack;
   int best = 0;
   for (int k = 0; k < g.nz; k += 2)
     for (int j = 0; j < g.ny; j += 2)
@@ -283,30 +282,31 @@ int mostBranches(const VoxelGrid& g) {
           return (a - i + w) + side * ((b - j + w) + side * (c - k + w));
         };
         const auto in_ball = [&](int a, int b, int c) {
-          if (a < 0 || b < 0 || c < 0 || a >= g.nx || b >= g.ny || c >= g.nz) return false;
           const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
-          return dx * dx + dy * dy + dz * dz <= outer2 && g.inside[g.index(a, b, c)] != 0;
+          return dx * dx + dy * dy + dz * dz <= outer2;
         };
         const auto shell = [&](int a, int b, int c) {
           const float dx = float(a - i), dy = float(b - j), dz = float(c - k);
           return dx * dx + dy * dy + dz * dz > inner2;
         };
-        // The flood from the centre inside the ball.
-        std::vector<int> todo{local(i, j, k)}, seen{local(i, j, k)};
+        const auto at = [&](int q, int& a, int& b, int& c) {
+          a = q % side - w + i, b = (q / side) % side - w + j, c = q / (side * side) - w + k;
+        };
+        // The flood from the centre through the inside voxels of the ball.
+        todo.assign(1, local(i, j, k)), seen.assign(1, todo[0]), shell_voxels.clear();
         reached[size_t(todo[0])] = 1;
-        std::vector<int> shell_voxels;
         while (!todo.empty()) {
           const int q = todo.back();
           todo.pop_back();
-          const int a = q % side - w + i, b = (q / side) % side - w + j, c = q / (side * side) - w + k;
+          int a, b, c;
+          at(q, a, b, c);
           if (shell(a, b, c)) shell_voxels.push_back(q);
-          for (int dc = -1; dc <= 1; ++dc)
-            for (int db = -1; db <= 1; ++db)
-              for (int da = -1; da <= 1; ++da) {
-                if (!in_ball(a + da, b + db, c + dc)) continue;
-                const int r = local(a + da, b + db, c + dc);
-                if (!reached[size_t(r)]) reached[size_t(r)] = 1, todo.push_back(r), seen.push_back(r);
-              }
+          forBox(g, a, b, c, 1, [&](int a2, int b2, int c2) {
+            if (!g.inside[g.index(a2, b2, c2)] || !in_ball(a2, b2, c2)) return true;
+            const int r = local(a2, b2, c2);
+            if (!reached[size_t(r)]) reached[size_t(r)] = 1, todo.push_back(r), seen.push_back(r);
+            return true;
+          });
         }
         // The reached shell voxels' pieces; a piece is a branch if it leaves
         // the ball (one of its voxels has an inside neighbour outside it).
@@ -318,22 +318,19 @@ int mostBranches(const VoxelGrid& g) {
           while (!stack.empty()) {
             const int q = stack.back();
             stack.pop_back();
-            const int a = q % side - w + i, b = (q / side) % side - w + j, c = q / (side * side) - w + k;
-            for (int dc = -1; dc <= 1; ++dc)
-              for (int db = -1; db <= 1; ++db)
-                for (int da = -1; da <= 1; ++da) {
-                  const int a2 = a + da, b2 = b + db, c2 = c + dc;
-                  if (a2 < 0 || b2 < 0 || c2 < 0 || a2 >= g.nx || b2 >= g.ny || c2 >= g.nz ||
-                      !g.inside[g.index(a2, b2, c2)])
-                    continue;
-                  if (!in_ball(a2, b2, c2)) {
-                    leaves = true;
-                    continue;
-                  }
-                  const int r = local(a2, b2, c2);
-                  if (reached[size_t(r)] && piece[size_t(r)] < 0 && shell(a2, b2, c2))
-                    piece[size_t(r)] = pieces, stack.push_back(r);
-                }
+            int a, b, c;
+            at(q, a, b, c);
+            forBox(g, a, b, c, 1, [&](int a2, int b2, int c2) {
+              if (!g.inside[g.index(a2, b2, c2)]) return true;
+              if (!in_ball(a2, b2, c2)) {
+                leaves = true;
+                return true;
+              }
+              const int r = local(a2, b2, c2);
+              if (reached[size_t(r)] && piece[size_t(r)] < 0 && shell(a2, b2, c2))
+                piece[size_t(r)] = pieces, stack.push_back(r);
+              return true;
+            });
           }
           ++pieces, branches += leaves;
         }

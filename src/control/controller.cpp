@@ -23,13 +23,13 @@
 namespace ff {
 
 void Controller::setBounds(const float lo[3], const float hi[3]) {
-  bounded_ = true, pairs_ready_ = false;
+  bounded_ = true, pairs_ready_ = false, control_sorted_ = false;
   for (int d = 0; d < 3; ++d) lo_[d] = lo[d], hi_[d] = hi[d];
 }
 
 void Controller::reset(ControlSet set) {
   set_ = std::move(set);
-  pairs_ready_ = false;
+  pairs_ready_ = false, control_sorted_ = false;
   anchorAtCentre(set_);
   const size_t n = set_.size();
   if (set_.radius_scale.size() != n) set_.radius_scale.assign(n, 1.0f);
@@ -249,6 +249,8 @@ Controller::SortedFluid Controller::sorted(const FluidView& f) {
 }
 
 void Controller::sortControl() {
+  if (control_sorted_) return;  // nothing moved since the last sort
+  control_sorted_ = true;
   const size_t n = set_.size();
   // Cells of radius / FF_CONTROL_GRID_DIVISIONS, over the container if bounded.
   const float cell = cp_.radius / float(FF_CONTROL_GRID_DIVISIONS);
@@ -514,7 +516,7 @@ int Controller::advance(float dt) {
 }
 
 bool Controller::shapeMatchStep() {
-  pairs_ready_ = false;  // the control particles move
+  pairs_ready_ = false, control_sorted_ = false;  // the control particles move
   const long n = long(set_.size());
   if (n == 0) return true;
   clusterFrames(set_, q_, cx_, cy_, cz_, sm_.rotation_iterations);

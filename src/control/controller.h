@@ -42,7 +42,7 @@ struct FluidView {
 class Controller {
  public:
   void setParams(const ControlParams& cp, const ShapeMatchParams& sm) {
-    cp_ = cp, sm_ = sm, pairs_ready_ = false;
+    cp_ = cp, sm_ = sm, pairs_ready_ = false, control_sorted_ = false;
   }
   // The host's gravity: the anchor (sm.anchor) holds the set against it (none while it is 0).
   void setGravity(const float g[3]) { g_[0] = g[0], g_[1] = g[1], g_[2] = g[2]; }
@@ -143,6 +143,9 @@ class Controller {
   std::vector<uint32_t> hit_cut_;
   size_t chunks_ = 1;
   bool pairs_ready_ = false;
+  // sx_ .. scoef_ and cp_grid_ hold the control particles as they are: no
+  // shape-matching step, reset, new bounds or parameters since sortControl.
+  bool control_sorted_ = false;
   const float* pairs_x_ = nullptr;
   size_t pairs_n_ = 0;
   std::vector<float> acc_;  // the scale sums' lanes: per sorted control position 4 x 8 floats

@@ -312,10 +312,10 @@ void Controller::findPairs(const SortedFluid& sf) {
       at[0] = uint32_t(t), at[1] = uint32_t(used), at[2] = uint32_t(nh);
       uint32_t* cut = hit_cut_.data() + (nch + 1) * size_t(g);
       const uint32_t* h = buf.data() + used;
-      size_t c = 0;  // cut c: the first pair with a control particle at or after chunk c's first
-      for (size_t q = 0; q < nh; ++q)
-        while (c < nch && h[q] >= firsts[c]) cut[c++] = uint32_t(q);
-      while (c <= nch) cut[c++] = uint32_t(nh);
+      // Cut c: the first pair with a control particle at or after chunk c's
+      // first (the pairs ascend), the last cut after them all.
+      for (size_t c = 0; c < nch; ++c) cut[c] = uint32_t(std::lower_bound(h, h + nh, firsts[c]) - h);
+      cut[nch] = uint32_t(nh);
       used += nh;
     }
   }

@@ -60,19 +60,23 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
       list.put(j, Lanes::any(dx * dx + dy * dy + dz * dz < reach2));
     }
-  const f8 zero = simd::splat(0.0f);
+  const f8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
   f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero, rs = zero;
+  // The kernel's constants as locals: list.value's stores could alias kr,
+  // which kept the compiler from hoisting its loads and products out of the
+  // loop (the same values and operations either way).
+  const float inv_h = kr.inv_h, kk = kr.k, kg = kr.kg;
   const size_t m = list.size();
   for (size_t q = 0; q < m; ++q) {
     const uint32_t j = list.index(q);
     const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
     const f8 r2 = dx * dx + dy * dy + dz * dz;
     const f8 dist = simd::sqrt8(r2);
-    const f8 gf = ff_cubic_grad_factor(dist, kr.inv_h, kr.kg);
-    w += ff_cubic(dist, kr.inv_h, kr.k);
+    const f8 gf = ff_cubic_grad_factor(dist, inv_h, kg);
+    w += ff_cubic(dist, inv_h, kk);
     ax += gf * dx, ay += gf * dy, az += gf * dz;
     ssq += gf * gf * r2;
-    cnt += r2 < h2 ? simd::splat(1.0f) : zero;
+    cnt += r2 < h2 ? one : zero;
     rs += gf * ((uxi - vx[j]) * dx + (uyi - vy[j]) * dy + (uzi - vz[j]) * dz);
     list.value(q, gf);
   }

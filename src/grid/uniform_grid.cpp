@@ -54,7 +54,6 @@ void UniformGrid::sort(size_t n, const float* x, const float* y, const float* z)
 
 void UniformGrid::rangesNear(const float lo[3], const float hi[3], float radius,
                              std::vector<uint32_t>& out) const {
-  out.clear();
   const float reach = ff_query_reach(radius, cell_), r2 = reach * reach;
   const int z0 = cellCoord(lo[2] - reach, oz_, nz_), z1 = cellCoord(hi[2] + reach, oz_, nz_);
   const int y0 = cellCoord(lo[1] - reach, oy_, ny_), y1 = cellCoord(hi[1] + reach, oy_, ny_);
@@ -64,6 +63,17 @@ void UniformGrid::rangesNear(const float lo[3], const float hi[3], float radius,
     const float g = ff_slab_gap(lo[1], hi[1], y, ny_, oy_, cell_);
     gy2[y - y0] = g * g;
   }
+  // Room for every row up front, written through a pointer (push_back's
+  // stores could alias the grid's members and the box, so they were
+  // reloaded per row); the members as locals. The same rows, tests and
+  // ranges in the same order.
+  const size_t most = z1 >= z0 && y1 >= y0 ? 2 * size_t(z1 - z0 + 1) * size_t(y1 - y0 + 1) : 0;
+  if (out.size() < most) out.resize(most);
+  uint32_t* o = out.data();
+  size_t k = 0;
+  const uint32_t* start = start_.data();
+  const float lox = lo[0], hix = hi[0], ox = ox_, inv_cell = inv_cell_;
+  const int nx = nx_, ny = ny_;
   for (int z = z0; z <= z1; ++z) {
     const float gz = ff_slab_gap(lo[2], hi[2], z, nz_, oz_, cell_), gz2 = gz * gz;
     if (gz2 > r2) continue;
@@ -72,16 +82,17 @@ void UniformGrid::rangesNear(const float lo[3], const float hi[3], float radius,
       if (y - y0 < kRows) {
         g2 = gy2[y - y0] + gz2;
       } else {
-        const float g = ff_slab_gap(lo[1], hi[1], y, ny_, oy_, cell_);
+        const float g = ff_slab_gap(lo[1], hi[1], y, ny, oy_, cell_);
         g2 = g * g + gz2;
       }
       int x0, x1;
-      if (!ff_row_cells(lo[0], hi[0], g2, reach, ox_, inv_cell_, nx_, &x0, &x1)) continue;
-      const size_t row = ff_cell_index(0, y, z, nx_, ny_);
-      const uint32_t b = start_[row + size_t(x0)], e = start_[row + size_t(x1) + 1];
-      if (b < e) out.push_back(b), out.push_back(e);
+      if (!ff_row_cells(lox, hix, g2, reach, ox, inv_cell, nx, &x0, &x1)) continue;
+      const size_t row = ff_cell_index(0, y, z, nx, ny);
+      const uint32_t b = start[row + size_t(x0)], e = start[row + size_t(x1) + 1];
+      if (b < e) o[k] = b, o[k + 1] = e, k += 2;
     }
   }
+  out.resize(k);
 }
 
 void UniformGrid::rowGroups(uint32_t width, std::vector<uint32_t>& out) const {

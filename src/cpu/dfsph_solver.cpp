@@ -55,11 +55,15 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   size_t most = 0;
   for (size_t r = 0; r < spans.size(); r += 2) most += spans[r + 1] - spans[r];
   NeighbourCache::Writer list = cache.open(most);
-  for (size_t r = 0; r < spans.size(); r += 2)
-    for (uint32_t j = spans[r]; j < spans[r + 1]; ++j) {
+  for (size_t r = 0; r < spans.size(); r += 2) {
+    // The range's ends as locals: list.put's stores could alias spans.
+    const uint32_t jb = spans[r], je = spans[r + 1];
+#pragma GCC unroll 4
+    for (uint32_t j = jb; j < je; ++j) {
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
       list.put(j, Lanes::any(dx * dx + dy * dy + dz * dz < reach2));
     }
+  }
   const f8 zero = simd::splat(0.0f), one = simd::splat(1.0f);
   f8 w = zero, ax = zero, ay = zero, az = zero, ssq = zero, cnt = zero, rs = zero;
   // The kernel's constants as locals: list.value's stores could alias kr,
@@ -159,6 +163,7 @@ FF_SIMD_BODY void groupSourcesOf(const CpuFluid& f, const NeighbourCache& nc, si
     const uint32_t* js = nc.neighbours(gi);
     const float* gs = nc.values(gi);
     const uint32_t m = nc.count(gi);
+#pragma GCC unroll 4
     for (uint32_t q = 0; q < m; ++q) {
       const uint32_t j = js[q];
       const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
@@ -217,6 +222,7 @@ FF_SIMD_BODY void kappaSumsOf(const CpuFluid& f, const NeighbourCache& nc, size_
   const uint32_t m = nc.count(gi);
   const f8 zero = simd::splat(0.0f);
   f8 kx = zero, ky = zero, kz = zero;
+#pragma GCC unroll 4
   for (uint32_t q = 0; q < m; ++q) {
     const uint32_t j = js[q];
     const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];

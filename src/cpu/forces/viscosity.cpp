@@ -47,6 +47,7 @@ FF_SIMD_BODY void viscositySumsOf(const CpuFluid& f, const NeighbourCache* nc, s
   if (nc) {
     const uint32_t* js = nc->neighbours(gi);
     const uint32_t m = nc->count(gi);
+#pragma GCC unroll 4
     for (uint32_t q = 0; q < m; ++q) add(js[q]);
   } else {
     for (size_t r = 0; r < spans.size(); r += 2)

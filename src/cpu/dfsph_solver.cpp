@@ -320,16 +320,23 @@ void DfsphSolver::applyVelocityChange(const CpuFluid& f, bool density, const std
   const float inv = 1.0f / scale;
   const float *gx = density ? wpx_.data() : wgx_.data(), *gy = density ? wpy_.data() : wgy_.data(),
               *gz = density ? wpz_.data() : wgz_.data();
+  // As locals: the epilogue's stores could alias inv and vol_, which were
+  // reloaded per particle (the same values and operations).
+  float* const tot = total ? total->data() : nullptr;
+  const float* const kp = k.data();
+  float *const ux = ux_.data(), *const uy = uy_.data(), *const uz = uz_.data();
+  const float vol = vol_;
   forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float ks[24];
-    kappaSums(f, cache_, gi, k.data(), b, e, ks);
+    kappaSums(f, cache_, gi, kp, b, e, ks);
+    const float iv = inv, v = vol;
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       const float sum[3] = {ks[l], ks[8 + l], ks[16 + l]}, wg[3] = {gx[i], gy[i], gz[i]};
       float du[3];
-      ff_dfsph_velocity_change(sum, k[i], vol_, wg, du);
-      ux_[i] += du[0] * inv, uy_[i] += du[1] * inv, uz_[i] += du[2] * inv;
-      if (total) (*total)[i] += k[i];
+      ff_dfsph_velocity_change(sum, kp[i], v, wg, du);
+      ux[i] += du[0] * iv, uy[i] += du[1] * iv, uz[i] += du[2] * iv;
+      if (tot) tot[i] += kp[i];
     }
   });
 }

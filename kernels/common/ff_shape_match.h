@@ -55,6 +55,19 @@ FF_FN ff_float3 ff_sm_frame(FF_GLOBAL const float* x, FF_GLOBAL const float* y, 
   return com;
 }
 
+/* One cluster's term of a goal (eq. 8): R (p0 - c0) + com, for the
+ * particle's rest position p0, the cluster's rotation R, rest centre c0 and
+ * centre of mass com. */
+FF_FN ff_float3 ff_sm_goal_term(ff_mat3 r, ff_float3 p0, ff_float3 c0, ff_float3 com) {
+  return ff_mat3_mul_vec(r, p0 - c0) + com;
+}
+
+/* The mean of a goal's n terms summed in g (0 where n is 0). */
+FF_FN ff_float3 ff_sm_goal_mean(ff_float3 g, uint n) {
+  const float inv = n > 0 ? 1.0f / (float)n : 0.0f;
+  return FF_F3(g.x * inv, g.y * inv, g.z * inv);
+}
+
 /* Control particle i's goal (eq. 8): the mean over its clusters
  * of[of_start[i] .. of_start[i + 1]) of R_c (x0_i - c0_c) + c_c, with the
  * clusters' rotations q and centres of mass com. */
@@ -66,13 +79,31 @@ FF_FN ff_float3 ff_sm_goal(FF_SM_REST_PARAMS, FF_GLOBAL const uint* of_start, FF
   const ff_float3 p0 = ff_blend_rest_at(bx0, by0, bz0, x0, y0, z0, i, w);
   for (uint k = b; k < e; ++k) {
     const uint c = of[k];
-    const ff_mat3 r = ff_quat_to_mat3(q[c]);
-    g += ff_mat3_mul_vec(r,
-                         p0 - ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w)) +
-         FF_F3(com_x[c], com_y[c], com_z[c]);
+    g += ff_sm_goal_term(ff_quat_to_mat3(q[c]), p0,
+                         ff_blend_rest_at(from_cx, from_cy, from_cz, rest_cx, rest_cy, rest_cz, c, w),
+                         FF_F3(com_x[c], com_y[c], com_z[c]));
   }
-  const float inv = e > b ? 1.0f / (float)(e - b) : 0.0f;
-  return FF_F3(g.x * inv, g.y * inv, g.z * inv);
+  return ff_sm_goal_mean(g, e - b);
+}
+
+/* The same goal from each cluster's rotation as a matrix (rot) and rest
+ * centre at this step's blend weight (rest_c), made once per cluster (the
+ * OpenMP backend's clusterGoals): the same terms, so the same bits. */
+FF_FN ff_float3 ff_sm_goal_framed(FF_GLOBAL const float* x0, FF_GLOBAL const float* y0,
+                                  FF_GLOBAL const float* z0, FF_GLOBAL const float* bx0,
+                                  FF_GLOBAL const float* by0, FF_GLOBAL const float* bz0,
+                                  FF_GLOBAL const uint* of_start, FF_GLOBAL const uint* of,
+                                  FF_GLOBAL const ff_mat3* rot, FF_GLOBAL const ff_float3* rest_c,
+                                  FF_GLOBAL const float* com_x, FF_GLOBAL const float* com_y,
+                                  FF_GLOBAL const float* com_z, uint i, float w) {
+  const uint b = of_start[i], e = of_start[i + 1];
+  ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
+  const ff_float3 p0 = ff_blend_rest_at(bx0, by0, bz0, x0, y0, z0, i, w);
+  for (uint k = b; k < e; ++k) {
+    const uint c = of[k];
+    g += ff_sm_goal_term(rot[c], p0, rest_c[c], FF_F3(com_x[c], com_y[c], com_z[c]));
+  }
+  return ff_sm_goal_mean(g, e - b);
 }
 
 /* Control particle i's velocity v after this step's damping (towards the

@@ -47,7 +47,7 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
   const float w = set.blendWeight();
   // ff_sm_goal's per-cluster terms, once per cluster instead of once per
   // member: the rotation matrix of q[c] and the rest centre at blend weight w
-  // (pure functions of the cluster, so the goals are the same bits).
+  // (pure functions of the cluster, so ff_sm_goal_framed gives the same bits).
   static thread_local std::vector<ff_mat3> rot;
   static thread_local std::vector<ff_float3> rest;
   rot.resize(size_t(nc)), rest.resize(size_t(nc));
@@ -61,17 +61,10 @@ void clusterGoals(const ControlSet& set, const std::vector<ff_quat>& q, const st
   }
 #pragma omp parallel for schedule(static) if (n > kParallelLightLoop)
   for (long p = 0; p < n; ++p) {
-    // ff_sm_goal (kernels/common/ff_shape_match.h), its arithmetic unchanged.
-    const uint32_t b = cl.of_start[size_t(p)], e = cl.of_start[size_t(p) + 1];
-    ff_float3 g = FF_F3(0.0f, 0.0f, 0.0f);
-    const ff_float3 p0 = ff_blend_rest_at(set.bx0.data(), set.by0.data(), set.bz0.data(), set.x0.data(),
-                                          set.y0.data(), set.z0.data(), uint32_t(p), w);
-    for (uint32_t k = b; k < e; ++k) {
-      const uint32_t c = cl.of[k];
-      g += ff_mat3_mul_vec(R[c], p0 - RC[c]) + FF_F3(cx[c], cy[c], cz[c]);
-    }
-    const float inv = e > b ? 1.0f / float(e - b) : 0.0f;
-    gx[size_t(p)] = g.x * inv, gy[size_t(p)] = g.y * inv, gz[size_t(p)] = g.z * inv;
+    const ff_float3 g = ff_sm_goal_framed(set.x0.data(), set.y0.data(), set.z0.data(), set.bx0.data(),
+                                          set.by0.data(), set.bz0.data(), cl.of_start.data(), cl.of.data(), R,
+                                          RC, cx.data(), cy.data(), cz.data(), uint32_t(p), w);
+    gx[size_t(p)] = g.x, gy[size_t(p)] = g.y, gz[size_t(p)] = g.z;
   }
 }
 

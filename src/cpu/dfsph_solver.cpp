@@ -71,18 +71,29 @@ FF_SIMD_BODY void factorSumsOf(const CpuFluid& f, size_t gi, uint32_t b, uint32_
   // loop (the same values and operations either way).
   const float inv_h = kr.inv_h, kk = kr.k, kg = kr.kg;
   const size_t m = list.size();
+  // Two passes over the list, each sum's terms in the same order as one pass
+  // (the build contracts no products into fmas, so a recomputed r_ij and r^2
+  // are the same bits): with the seven sums, the kernel and the velocities in
+  // one loop GCC spilled five of the seven to the stack each candidate. The
+  // first pass takes the square root, the kernel and the gradient's factor g,
+  // which it stores in the list; the second reads g back.
   for (size_t q = 0; q < m; ++q) {
     const uint32_t j = list.index(q);
     const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
     const f8 r2 = dx * dx + dy * dy + dz * dz;
     const f8 dist = simd::sqrt8(r2);
-    const f8 gf = ff_cubic_grad_factor(dist, inv_h, kg);
     w += ff_cubic(dist, inv_h, kk);
+    cnt += r2 < h2 ? one : zero;
+    list.value(q, ff_cubic_grad_factor(dist, inv_h, kg));
+  }
+  for (size_t q = 0; q < m; ++q) {
+    const uint32_t j = list.index(q);
+    const f8 dx = g.x - x[j], dy = g.y - y[j], dz = g.z - z[j];
+    const f8 r2 = dx * dx + dy * dy + dz * dz;
+    const f8 gf = list.valueAt(q);
     ax += gf * dx, ay += gf * dy, az += gf * dz;
     ssq += gf * gf * r2;
-    cnt += r2 < h2 ? one : zero;
     rs += gf * ((uxi - vx[j]) * dx + (uyi - vy[j]) * dy + (uzi - vz[j]) * dz);
-    list.value(q, gf);
   }
   cache.close(gi, list);
   const f8 sums[7] = {w, ax, ay, az, ssq, cnt, rs};

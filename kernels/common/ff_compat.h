@@ -105,6 +105,31 @@ inline float ff_fmax_c(float a, float b) {
   template <class FF_T>         \
   [[gnu::always_inline]] def(FF_T, name, )
 #endif
+/* Whether some lane of a comparison's result is true: one value is its own
+ * lane (int in OpenCL C, bool in C++); a vector mask has all bits set in a
+ * true lane (OpenCL's int8, the C++ backend's i8). Lets a formula skip work
+ * that adds exact zeros in every lane (called as FF_OF(ff_any_lane, S)). */
+#ifdef __OPENCL_VERSION__
+FF_FN int ff_any_lane(int m) {
+  return m != 0;
+}
+FF_FN int ff_any_lane_8(int8 m) {
+  return any(m);
+}
+#else
+inline bool ff_any_lane(bool m) {
+  return m;
+}
+template <class M>
+[[gnu::always_inline]] inline bool ff_any_lane(M m) {
+  static_assert(sizeof(M) % sizeof(unsigned long long) == 0, "a vector mask");
+  unsigned long long w[sizeof(M) / sizeof(unsigned long long)], bits = 0;
+  __builtin_memcpy(w, &m, sizeof w);
+  for (unsigned long long v : w) bits |= v;
+  return bits != 0;
+}
+#endif
+
 /* A formula that calls other FF_GENERIC formulas is a def(T, name, S),
  * stamped out by FF_GENERIC_S: S is the suffix of its instance (nothing, or
  * _8 for OpenCL's float8, which has no overloading), and it calls them as

@@ -196,7 +196,10 @@ FF_GENERIC_S(FF_DFSPH_WALL_REACH_DEF, ff_dfsph_wall_reach)
  * Per lane (ff_dfsph_wall_of: the position (px, py, pz), grad: 3 values):
  * out of reach of every wall (ff_dfsph_wall_reach 0) it gives S = +0 and
  * grad S = +0 (1 - 1, and +0 + -0 for each axis). ff_dfsph_wall, one
- * particle, returns those at once there (most particles). */
+ * particle, returns those at once there (most particles). A wall that no
+ * lane reaches skips its layers: side 1 and slope +-0, the bits its layers
+ * give there (share and slope +0), so a group near one wall pays for that
+ * wall alone. */
 #define FF_DFSPH_WALL_DEF(T, name, S)                                                                 \
   FF_FN T name(T px, T py, T pz, const float* lo, const float* hi, float spacing, float vol, float H, \
                float inv_h, T* grad) {                                                                \
@@ -204,10 +207,11 @@ FF_GENERIC_S(FF_DFSPH_WALL_REACH_DEF, ff_dfsph_wall_reach)
     const T p[3] = {px, py, pz};                                                                      \
     T side[6], slope[6];                                                                              \
     for (int w = 0; w < 6; ++w) {                                                                     \
-      T s;                                                                                            \
-      side[w] = 1.0f - FF_OF(ff_dfsph_wall_layers, S)(                                                \
-                           FF_OF(ff_dfsph_wall_distance, S)(p[w / 2], lo, hi, w / 2, w % 2, spacing), \
-                           spacing, vol, H, inv_h, k, &s);                                            \
+      const T d = FF_OF(ff_dfsph_wall_distance, S)(p[w / 2], lo, hi, w / 2, w % 2, spacing);          \
+      T s = FF_ZERO_OF(T);                                                                            \
+      side[w] = FF_ZERO_OF(T) + 1.0f;                                                                 \
+      if (FF_OF(ff_any_lane, S)(FF_OF(ff_dfsph_wall_nearest, S)(d, spacing) + 0.5f * spacing < H))    \
+        side[w] = 1.0f - FF_OF(ff_dfsph_wall_layers, S)(d, spacing, vol, H, inv_h, k, &s);            \
       slope[w] = (w % 2 ? -2.0f : 2.0f) * s;                                                          \
     }                                                                                                 \
     T prod = FF_ZERO_OF(T) + 1.0f;                                                                    \

@@ -10,8 +10,7 @@ void NeighbourCache::Buffer::reserve(size_t n) {
   if (n <= capacity) return;
   const size_t c = std::max(n, capacity + capacity / 2);
   std::unique_ptr<uint32_t[]> nj(new uint32_t[c]);
-  std::unique_ptr<float[], AlignedDelete> ng(
-      static_cast<float*>(::operator new[](8 * c * sizeof(float), std::align_val_t(kValueAlign))));
+  std::unique_ptr<float[]> ng(new float[8 * c]);
   if (size) {
     std::memcpy(nj.get(), j.get(), size * sizeof(uint32_t));
     std::memcpy(ng.get(), g.get(), 8 * size * sizeof(float));

@@ -16,7 +16,6 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
-#include <new>
 #include <vector>
 
 #include "parallel/simd8.h"
@@ -36,7 +35,7 @@ class NeighbourCache {
   // Group gi's list as it is written, from inside the filling region: room
   // for `most` candidates; put() writes one at the current end and keeps it
   // if `keep` (branch-free); then value() sets the q-th kept one's 8 lane
-  // values; close() stores the list.
+  // values (valueAt() reads them back); close() stores the list.
   class Writer {
    public:
     void put(uint32_t j, bool keep) {
@@ -67,25 +66,14 @@ class NeighbourCache {
   float reach2() const { return kReachSlack * radius_ * radius_; }
   uint32_t count(size_t gi) const { return count_[gi]; }
   const uint32_t* neighbours(size_t gi) const { return buffers_[owner_[gi]].j.get() + offset_[gi]; }
-  // 8 lane values per candidate, 32 bytes each; a buffer starts on a
-  // kValueAlign boundary, so every candidate's 8 values sit in one cache line
-  // (load them with memcpy all the same: the type promises no alignment).
+  // 8 lane values per candidate (load them with memcpy: no alignment).
   const float* values(size_t gi) const { return buffers_[owner_[gi]].g.get() + 8 * size_t(offset_[gi]); }
   size_t memoryBytes() const;
 
-  // The values' alignment. Measured on the peer dam break (AMD EPYC, 1
-  // thread): the hot kappaSums walk took 1.71-2.53 ns per candidate when
-  // operator new[] left the values at a 16-byte offset, where half the
-  // 32-byte loads split a cache line, against 1.67-1.68 ns aligned.
-  static constexpr size_t kValueAlign = 64;
-
  private:
-  struct AlignedDelete {
-    void operator()(float* p) const { ::operator delete[](p, std::align_val_t(kValueAlign)); }
-  };
   struct Buffer {  // uninitialised storage: each substep overwrites it
     std::unique_ptr<uint32_t[]> j;
-    std::unique_ptr<float[], AlignedDelete> g;
+    std::unique_ptr<float[]> g;
     size_t size = 0, capacity = 0;
     void reserve(size_t n);
   };

@@ -210,7 +210,7 @@ FF_GENERIC_S(FF_DFSPH_WALL_REACH_DEF, ff_dfsph_wall_reach)
       const T d = FF_OF(ff_dfsph_wall_distance, S)(p[w / 2], lo, hi, w / 2, w % 2, spacing);          \
       T s = FF_ZERO_OF(T);                                                                            \
       side[w] = FF_ZERO_OF(T) + 1.0f;                                                                 \
-      if (FF_OF(ff_any_lane, S)(FF_OF(ff_dfsph_wall_nearest, S)(d, spacing) + 0.5f * spacing < H))    \
+      if (FF_OF(ff_any_lane, S)(FF_OF(ff_dfsph_wall_out_of_reach, S)(d, spacing, H) == 0.0f))         \
         side[w] = 1.0f - FF_OF(ff_dfsph_wall_layers, S)(d, spacing, vol, H, inv_h, k, &s);            \
       slope[w] = (w % 2 ? -2.0f : 2.0f) * s;                                                          \
     }                                                                                                 \

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "ff_compat.h"
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 namespace ff::simd {
@@ -71,9 +72,7 @@ inline i8 liveLanes(int n) {
 }
 
 inline bool any(i8 m) {
-  unsigned long long w[4];
-  std::memcpy(w, &m, sizeof w);
-  return ((w[0] | w[1]) | (w[2] | w[3])) != 0;
+  return ff_any_lane(m);
 }
 
 inline float hmin(f8 v, int n) {

@@ -97,8 +97,9 @@ inline bool finiteN(f8 v, int n) {
 
 // Instruction sets of the hot loops. Each is written once as an
 // always-inline template on its lane test (FF_SIMD_BODY) and instantiated in a
-// portable function and in one built for AVX2 (FF_SIMD_DISPATCH); a few have
-// an AVX-512 instance too. PortableLanes compiles anywhere; Avx2Lanes::any is
+// portable function, in one built for AVX2 and in one built for AVX-512F
+// and VL, on the same 8 lanes (FF_SIMD_DISPATCH); a few have a 16-lane
+// AVX-512 loop of their own too. PortableLanes compiles anywhere; Avx2Lanes::any is
 // one vmovmskps (simd::any goes through four general-purpose registers) and
 // may only run inside AVX2 code. Every instance rounds the same operations in
 // the same order (no contraction: -ffp-contract=off) and tests the same bits,
@@ -119,7 +120,7 @@ enum class Isa { Portable = 0, Avx2 = 1, Avx512 = 2 };
 namespace detail {
 inline Isa cpuIsa() {
 #if FF_SIMD_AVX2
-  if (__builtin_cpu_supports("avx512f")) return Isa::Avx512;
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) return Isa::Avx512;
   if (__builtin_cpu_supports("avx2")) return Isa::Avx2;
 #endif
   return Isa::Portable;
@@ -170,29 +171,41 @@ struct Avx2Lanes {
   static inline bool any(i8 m) { return __builtin_ia32_movmskps256((f8)m) != 0; }
 };
 #pragma GCC pop_options
+// The AVX-512 instances' lane test: AVX2's, inlined into AVX-512 code.
+struct Avx512Lanes : Avx2Lanes {};
 #define FF_TARGET_AVX2 __attribute__((target("avx2")))
+#define FF_TARGET_AVX512 __attribute__((target("avx2,avx512f,avx512vl")))
 #endif
 }  // namespace ff::simd
 
 // A hot loop's body: `template <class Lanes> FF_SIMD_BODY R nameOf(...)`.
 #define FF_SIMD_BODY [[gnu::always_inline]] inline
-// Defines name(...) for the body nameOf: its AVX2 instance where
-// simd::hasAvx2(), else its portable one. Not inlined, so that its loop's
-// other inlining stays as it was with GCC's target_clones before.
+// Defines name(...) for the body nameOf: its AVX-512 instance where
+// simd::hasAvx512(), else its AVX2 one where simd::hasAvx2(), else its
+// portable one. The AVX-512 instance runs the same 8 lanes as the AVX2 one,
+// with AVX-512VL's encodings: 32 vector registers instead of 16, so fewer
+// sums and loop constants go to the stack (docs/PERFORMANCE.md). Not
+// inlined, so that its loop's other inlining stays as it was with GCC's
+// target_clones before.
 #if FF_SIMD_AVX2
-#define FF_SIMD_DISPATCH(name)                                             \
-  template <class... A>                                                    \
-  auto name##Portable(A&&... a) {                                          \
-    return name##Of<::ff::simd::PortableLanes>(static_cast<A&&>(a)...);    \
-  }                                                                        \
-  template <class... A>                                                    \
-  FF_TARGET_AVX2 auto name##Avx2(A&&... a) {                               \
-    return name##Of<::ff::simd::Avx2Lanes>(static_cast<A&&>(a)...);        \
-  }                                                                        \
-  template <class... A>                                                    \
-  [[gnu::noinline]] auto name(A&&... a) {                                  \
-    return ::ff::simd::hasAvx2() ? name##Avx2(static_cast<A&&>(a)...)      \
-                                 : name##Portable(static_cast<A&&>(a)...); \
+#define FF_SIMD_DISPATCH(name)                                               \
+  template <class... A>                                                      \
+  auto name##Portable(A&&... a) {                                            \
+    return name##Of<::ff::simd::PortableLanes>(static_cast<A&&>(a)...);      \
+  }                                                                          \
+  template <class... A>                                                      \
+  FF_TARGET_AVX2 auto name##Avx2(A&&... a) {                                 \
+    return name##Of<::ff::simd::Avx2Lanes>(static_cast<A&&>(a)...);          \
+  }                                                                          \
+  template <class... A>                                                      \
+  FF_TARGET_AVX512 auto name##Avx512(A&&... a) {                             \
+    return name##Of<::ff::simd::Avx512Lanes>(static_cast<A&&>(a)...);        \
+  }                                                                          \
+  template <class... A>                                                      \
+  [[gnu::noinline]] auto name(A&&... a) {                                    \
+    return ::ff::simd::hasAvx512() ? name##Avx512(static_cast<A&&>(a)...)    \
+           : ::ff::simd::hasAvx2() ? name##Avx2(static_cast<A&&>(a)...)      \
+                                   : name##Portable(static_cast<A&&>(a)...); \
   }
 #else
 #define FF_SIMD_DISPATCH(name)                                          \

@@ -26,7 +26,7 @@ SurfaceMesh particleSurface(size_t n, const float* x, const float* y, const floa
                             const SurfaceOptions& o, const std::string& vdb_path, double time) {
   validateSurfaceOptions(o, "surface: ");
   if (!(std::isfinite(spacing) && spacing > 0.0f)) throw Error("surface: the rest spacing must be positive");
-  const FfSurfaceCall call{n, x, y, z, spacing, &o, vdb_path.empty() ? nullptr : vdb_path.c_str(), time};
+  const FfSurfaceCall call{n, x, y, z, spacing, &o, vdb_path.c_str(), time};
   return callSurfaceModule(call);
 }
 

@@ -10,7 +10,7 @@
 #include "surface/surface_mesh.h"
 #include "surface/surface_options.h"
 
-// One surface to make (particleSurface's arguments). vdb_path: null for none.
+// One surface to make (particleSurface's arguments). vdb_path: "" for none.
 struct FfSurfaceCall {
   size_t n;
   const float *x, *y, *z;

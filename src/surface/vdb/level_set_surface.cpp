@@ -1,8 +1,6 @@
-// level_set_surface.cpp - the surface module (libflowform_surface.so):
-// OpenVDB's particles -> level set -> triangles. Loaded by
-// surface/surface_module.cpp the first time a surface is made, so that a
-// command that makes none never loads OpenVDB (its 57,000 symbol bindings
-// took most of each start-up, docs/PERFORMANCE.md).
+// level_set_surface.cpp - the surface module (libflowform_surface.so, why a
+// module: surface/surface_module.h): OpenVDB's particles -> level set ->
+// triangles.
 #include <omp.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -15,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <mutex>
 
@@ -141,7 +138,7 @@ extern "C" __attribute__((visibility("default"))) int ff_surface_module_v1(const
                                                                            size_t error_size) {
   try {
     *out = ff::levelSetSurface(call->n, call->x, call->y, call->z, call->spacing, *call->options,
-                               call->vdb_path ? call->vdb_path : "", call->time);
+                               call->vdb_path, call->time);
     return 0;
   } catch (const std::exception& e) {
     std::snprintf(error, error_size, "%s", e.what());

@@ -6,6 +6,7 @@
 // Local sizes must be powers of two; groups stride over the input.
 #pragma OPENCL FP_CONTRACT OFF
 #include "ff_grid.h"
+#include "ff_integrate.h"
 #include "ff_lanes.h"
 #include "ff_rotation.h"
 #include "ff_sph.h"
@@ -39,7 +40,7 @@ __kernel void metrics_fluid(__global const float* rho, __global const float* p, 
     comp += fmax(rho[i] - rho0, 0.0f) / rho0;
     rho_max = fmax(rho_max, rho[i]);
     p_max = fmax(p_max, p[i]);
-    const float v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+    const float v2 = ff_speed2(vx[i], vy[i], vz[i]);
     v2sum += v2;
     v2max = fmax(v2max, v2);
   }

@@ -577,8 +577,8 @@ TEST(Dfsph, RestingColumnHoldsItsDensityWithFourMillisecondSubstepsAllowed) {
   Column col(p);
   ff::Simulation& sim = col.sim;
   const double sp = p.fluid.restSpacing(), rho0 = p.fluid.rest_density, g = -p.fluid.gravity[1];
-  double worst = 0.0;
-  int most_substeps = 0, least_substeps = 1000;
+  double worst = 0.0, clock_at_2 = 0.0;
+  int most_substeps = 0, later_substeps = 0;
   while (sim.metrics().time < 0.5 - 1e-9) {
     ASSERT_NO_THROW(sim.step()) << "t = " << sim.metrics().time;
     const ff::StepMetrics& m = sim.metrics();
@@ -586,13 +586,17 @@ TEST(Dfsph, RestingColumnHoldsItsDensityWithFourMillisecondSubstepsAllowed) {
     most_substeps = std::max(most_substeps, m.substeps);
     EXPECT_LE(m.max_density, 1.01 * rho0) << "t = " << m.time;
     EXPECT_LE(m.compression, 1e-3) << "t = " << m.time;
-    if (m.step > 2) least_substeps = std::min(least_substeps, m.substeps);
+    if (m.step == 2) clock_at_2 = sim.time();
+    if (m.step > 2) later_substeps += m.substeps;
   }
   // The substep the pressure allows under this column, pressure_cfl h /
-  // sqrt(g h) = 3.1 ms at rho0 g h: at least two per 4 ms step (the first
-  // two steps, while the pressure builds up from 0, take one).
-  EXPECT_GE(least_substeps, 2);
-  std::printf("substeps per 4 ms step: %d to %d\n", least_substeps, most_substeps);
+  // sqrt(g h) = 3.1 ms at rho0 g h, not the 4 ms allowed: the substeps after
+  // the first two steps (while the pressure builds up from 0) average at
+  // most that, on the fluid's clock (they carry over the frame steps).
+  const double mean_substep = (sim.time() - clock_at_2) / double(later_substeps);
+  EXPECT_LE(mean_substep, 3.2e-3);
+  std::printf("substeps per 4 ms step: up to %d, %.3f ms each on average\n", most_substeps,
+              1e3 * mean_substep);
   const auto& f = col.cpu->fluid();
   ASSERT_EQ(f.size(), size_t(Column::nx * Column::ny * Column::nz));
   const double rms = rmsSpeedInTheBox(f, col.scene);

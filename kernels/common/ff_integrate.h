@@ -6,6 +6,14 @@
 #define FF_INTEGRATE_H
 #include "ff_compat.h"
 
+/* The squared speed, in one rounding order for both backends: the velocity
+ * limit reads it, and so does the metrics' max_speed, which sets the CFL
+ * substeps (a different rounding there would give the backends different
+ * substeps where they carry over the frame, fluid.substep_carry). */
+FF_FN float ff_speed2(float vx, float vy, float vz) {
+  return vx * vx + vy * vy + vz * vz;
+}
+
 /* Advances velocity v and position x (3 floats each) by dt under the
  * acceleration a: v += dt a, limited to speed vmax, then x += dt v, kept
  * eps inside [lo, hi] with the velocity into a wall zeroed. Returns 1 when
@@ -14,7 +22,7 @@
 FF_FN int ff_integrate_particle(float* v, float* x, const float* a, float dt, float vmax, const float* lo,
                                 const float* hi, float eps) {
   for (int d = 0; d < 3; ++d) v[d] = v[d] + dt * a[d];
-  const float sp = FF_SQRT(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const float sp = FF_SQRT(ff_speed2(v[0], v[1], v[2]));
   int clamped = 0;
   if (sp > vmax) {
     const float c = vmax / sp;

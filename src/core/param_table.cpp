@@ -86,6 +86,10 @@ const std::vector<ParamInfo>& paramTable() {
       {"fluid", "cfl", T::Real, 0.0, 1.0, true, "CFL number of the automatic substeps", FF_FIELD(fluid.cfl)},
       {"fluid", "max_substeps", T::Integer, 1, 1000, false, "the most CFL substeps per step",
        FF_FIELD(fluid.max_substeps)},
+      {"fluid", "substep_carry", T::Integer, 0, 1, false,
+       "1: substeps as long as the CFL conditions allow, a frame step's last one ending at or past the frame "
+       "(the fluid's clock leads by less than a substep); 0: equal substeps that end on the frame",
+       FF_FIELD(fluid.substep_carry), kMode},
       {"fluid", "max_substep", T::Real, 1e-6, 1.0, false,
        "the longest substep (s), whatever the CFL number allows", FF_FIELD(fluid.max_substep)},
       {"fluid", "pressure_cfl", T::Real, 0.0, 1.0, true,

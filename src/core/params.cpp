@@ -52,6 +52,31 @@ float FluidParams::frameStep() const {
 }
 
 int FluidParams::substepsFor(double max_pressure, double max_speed) const {
+  const double n = std::ceil(double(time_step) / substepLimit(max_pressure, max_speed) - 1e-9);
+  return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+}
+
+SubstepPlan FluidParams::substepPlan(double lead, double max_pressure, double max_speed) const {
+  SubstepPlan plan;
+  if (!substep_carry) {
+    plan.count = substepsFor(max_pressure, max_speed);
+    plan.dt = time_step / float(plan.count);
+    plan.lead = lead;
+    return plan;
+  }
+  const double frame = double(time_step);
+  // What is left of this frame step for the fluid; a frame step made shorter
+  // than the lead (the viewer's slider) starts the frame clock afresh.
+  const double rest = lead < frame ? frame - lead : frame;
+  const double longest = std::min(substepLimit(max_pressure, max_speed), frame);
+  const double n = std::ceil(rest / longest - 1e-9);
+  plan.count = int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+  plan.dt = float(std::max(longest, rest / double(plan.count)));
+  plan.lead = std::max(0.0, double(plan.count) * double(plan.dt) - rest);
+  return plan;
+}
+
+double FluidParams::substepLimit(double max_pressure, double max_speed) const {
   // WCSPH: the sound speed of p = k (rho - rho0), sqrt(k), adds to the speed.
   const double c = solver == PressureSolverKind::Wcsph ? std::sqrt(std::max(0.0, double(gas_constant))) : 0.0;
   double dt_cfl = std::min(double(cfl) * double(smoothing_radius) / (c + max_speed + 1e-12), substepCap());
@@ -66,8 +91,7 @@ int FluidParams::substepsFor(double max_pressure, double max_speed) const {
   if (solver == PressureSolverKind::Dfsph && max_pressure > 0.0)
     dt_cfl = std::min(dt_cfl, double(pressure_cfl) * double(smoothing_radius) /
                                   std::sqrt(max_pressure / double(rest_density)));
-  const double n = std::ceil(double(time_step) / dt_cfl - 1e-9);
-  return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+  return dt_cfl;
 }
 
 float ControlParams::recaptureSpeed(const float g[3]) const {
@@ -135,6 +159,9 @@ Params waterParams() {
   f.smoothing_radius = 2.0f * std::cbrt(volume);
   f.solver = PressureSolverKind::Dfsph;
   f.cfl = 0.2f;  // two fifths of a spacing per substep at the largest speed (docs/PRESETS.md)
+  // Substeps as long as the CFL conditions allow, carried over the frame's
+  // end (docs/PRESETS.md, "Substeps that carry over the frame").
+  f.substep_carry = 1;
   // The longest substep is 0.112 fall times sqrt(h / g) of the support, the
   // same on every scene's own clock (docs/PRESETS.md, "Substep cap in fall
   // times"): 4.01 ms at the paper's spacing, so one substep per 4 ms frame

@@ -24,6 +24,14 @@ const char* solverName(PressureSolverKind k);
 // The solver called `name`; throws ff::Error "params.fluid.solver: ..." for another.
 PressureSolverKind solverByName(const std::string& name);
 
+// A frame step's substeps: `count` of `dt` s each, after which the fluid's
+// clock leads the frame clock by `lead` s (0 <= lead < dt).
+struct SubstepPlan {
+  int count = 1;
+  float dt = 0.0f;
+  double lead = 0.0;
+};
+
 struct FluidParams {
   float particle_mass = 0.0002f;
   float particle_radius = 0.0059f;  // used for rendering and export only
@@ -40,6 +48,15 @@ struct FluidParams {
   // max_substeps).
   float cfl = 0.4f;
   int max_substeps = 16;
+  // 1: each substep is as long as the CFL conditions and the cap allow (at
+  // most the frame step), and a frame step's last substep may end past the
+  // frame's end. The fluid's clock then leads the frame clock by less than
+  // one substep, and the next frame step is that much shorter (substepPlan).
+  // Equal substeps that end on the frame take ceil(time_step / dt) of them,
+  // up to one more per frame step than the fluid needs (12 % of the peer dam
+  // break's substeps, docs/PRESETS.md, "Substeps that carry over the frame").
+  // 0: a frame step's substeps are equal and end on the frame (the paper).
+  int substep_carry = 0;
   // The longest substep (s), whatever the CFL condition allows.
   float max_substep = 0.1f;
   // > 0: the longest substep is also max_substep_fall times the fall time
@@ -91,6 +108,12 @@ struct FluidParams {
   // (a scene's or script's params, the viewer, bench --stability) calls this.
   void setTimeStep(float seconds) { time_step = seconds, time_step_fall = 0.0f; }
   int substepsFor(double max_pressure, double max_speed) const;
+  // The longest substep the CFL conditions and the cap allow (s).
+  double substepLimit(double max_pressure, double max_speed) const;
+  // The substeps of the next frame step, the fluid's clock `lead` s ahead of
+  // the frame clock: equal ones that end on the frame (substep_carry 0), or
+  // ones as long as substepLimit allows that end at or past it.
+  SubstepPlan substepPlan(double lead, double max_pressure, double max_speed) const;
 };
 
 struct ControlParams {

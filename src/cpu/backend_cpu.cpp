@@ -8,6 +8,7 @@
 
 #include "control/shape_matching.h"
 #include "cpu/forces/cpu_forces.h"
+#include "ff_integrate.h"
 #include "metrics/fluid_shares.h"
 #include "metrics/pose.h"
 #include "parallel/parallel_grain.h"
@@ -180,7 +181,7 @@ StepMetrics CpuBackend::computeMetrics(bool with_shape) {
     p_max = std::max(p_max, double(fluid_.p[i]));
     const double v2 = double(s.vx[i]) * s.vx[i] + double(s.vy[i]) * s.vy[i] + double(s.vz[i]) * s.vz[i];
     ke += 0.5 * mass * v2;
-    vmax2 = std::max(vmax2, v2);
+    vmax2 = std::max(vmax2, double(ff_speed2(s.vx[i], s.vy[i], s.vz[i])));  // as the kernel rounds it
   }
   m.density_error = n ? derr / double(n) : 0.0;
   m.compression = n ? comp / double(n) : 0.0;

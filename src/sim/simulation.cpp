@@ -95,7 +95,7 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
   scene_.params.fluid.setFrameStep();
   backend_->init(scene_.params, scene_.container, makeFluid(scene_));
   r.tag("SIMU");
-  r.pod(step_), r.pod(time_), r.pod(metrics_);
+  r.pod(step_), r.pod(time_), r.pod(lead_), r.pod(metrics_);
   const uint64_t next = r.pod<uint64_t>();
   r.check(next <= scene_.schedule.size(), "the schedule position is past the schedule's end");
   next_schedule_ = size_t(next);
@@ -119,7 +119,7 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
 
 void Simulation::saveState(StateWriter& w) const {
   w.tag("SIMU");
-  w.pod(step_), w.pod(time_), w.pod(metrics_);
+  w.pod(step_), w.pod(time_), w.pod(lead_), w.pod(metrics_);
   w.pod(uint64_t(next_schedule_));
   w.pod(has_target_), w.pod(controlled_), w.pod(target_volume_);
   w.pod(metrics_requested_), w.pod(metrics_fresh_), w.pod(unchecked_from_);
@@ -183,8 +183,9 @@ void Simulation::step() {
   applySchedule();
   const FluidParams& fp = scene_.params.fluid;
   // Substeps from the CFL condition, with last step's highest pressure and speed.
-  const int n = fp.substepsFor(metrics_.max_pressure, metrics_.max_speed);
-  const float dt = fp.time_step / float(n);
+  const SubstepPlan plan = fp.substepPlan(lead_, metrics_.max_pressure, metrics_.max_speed);
+  const int n = plan.count;
+  const float dt = plan.dt;
   for (int k = 0; k < n; ++k) {
     timed(Phase::Grid, [&] { backend_->buildGrid(); });
     timed(Phase::Density, [&] { backend_->computeDensity(); });
@@ -202,7 +203,10 @@ void Simulation::step() {
   const long step = step_;
   const double time = time_;
   ++step_;
-  time_ += double(fp.time_step);
+  // The fluid's clock: whole frame steps, or the substeps it took where they
+  // carry over the frame (then lead_ is how far it runs ahead of the frames).
+  time_ += fp.substep_carry ? double(n) * double(dt) : double(fp.time_step);
+  lead_ = plan.lead;
   const bool want = metrics_requested_ || step_ % metrics_every_ == 0;
   const bool with_shape = !shape_on_request_ || metrics_requested_;
   metrics_requested_ = false;

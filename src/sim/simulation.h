@@ -48,6 +48,8 @@ class Simulation {
   Backend& backend() { return *backend_; }
   const StepMetrics& metrics() const { return metrics_; }
   long stepCount() const { return step_; }
+  // The fluid's simulated time (s): whole frame steps, ahead of them by less
+  // than a substep where substeps carry over the frame (fluid.substep_carry).
   double time() const { return time_; }
   const TargetShape* target() const { return target_; }
   size_t targetCacheSize() const { return cache_.size(); }
@@ -117,7 +119,8 @@ class Simulation {
   long step_ = 0;
   long controlled_ = 0;
   std::vector<uint8_t> controlled_by_id_;  // the controlled fluid by particle id (empty: all of it)
-  double time_ = 0.0;
+  double time_ = 0.0;                      // the fluid's clock (s)
+  double lead_ = 0.0;                      // how far it runs ahead of the frame clock (fluid.substep_carry)
   StepMetrics metrics_;
   std::array<double, size_t(Phase::Count)> phase_ms_{};
   std::array<double, size_t(Phase::Count)> last_step_ms_{};

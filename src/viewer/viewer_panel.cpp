@@ -210,6 +210,15 @@ bool intParam(const char* label, int& v, int lo, int hi, const char* help) {
   return changed;
 }
 
+// A mode that is on (1) or off (0), as a checkbox.
+bool modeParam(const char* label, int& v, const char* help) {
+  bool on = v != 0;
+  const bool changed = ImGui::Checkbox(label, &on);
+  if (changed) v = on ? 1 : 0;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", help);
+  return changed;
+}
+
 // Whether GROUP.KEY acts with parameters p (paramActs).
 bool acts(const Params& p, const char* group, const char* key) {
   for (const ParamInfo& info : paramTable())
@@ -240,6 +249,10 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
     changed |= ImGui::SliderFloat3("gravity m/s^2", f.gravity, -20.0f, 20.0f, "%.2f");
     changed |= floatParam("cfl", f.cfl, 0.05f, 1.0f, false, "substeps: dt <= cfl h / (c + v_max)");
     changed |= intParam("max substeps", f.max_substeps, 1, 64, "upper bound on CFL substeps per step");
+    changed |= modeParam("carry substeps", f.substep_carry,
+                         "fluid.substep_carry: substeps as long as the CFL conditions allow, the last one "
+                         "ending past the step (the fluid's clock leads by less than a substep), or equal "
+                         "substeps that end on it");
     changed |= floatParam("max step fraction", f.max_step_fraction, 0.05f, 1.0f, false,
                           "no particle moves more than this fraction of h per substep");
     ImGui::TreePop();
@@ -255,15 +268,9 @@ void paramsSection(ViewerUi& ui, ViewerSession& session) {
       changed |= floatParam("radius spacings", c.radius_spacings, 0.5f, 10.0f, true,
                             "control.radius_spacings: the influence radius in control particle spacings, set "
                             "at every target");
-    bool normalised = c.normalise != 0;
-    if (ImGui::Checkbox("normalised pull", &normalised)) {
-      c.normalise = normalised ? 1 : 0;
-      changed = true;
-    }
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip(
-          "control.normalise: eq. 4 and 6 normalised by the local control weight "
-          "(attraction_g, velocity_rate), or as the paper writes them (w_a, w_v, units)");
+    changed |= modeParam("normalised pull", c.normalise,
+                         "control.normalise: eq. 4 and 6 normalised by the local control weight "
+                         "(attraction_g, velocity_rate), or as the paper writes them (w_a, w_v, units)");
     if (acts(p, "control", "attraction_g")) {
       changed |= floatParam("attraction g", c.attraction_g, 0.0f, 50.0f, false,
                             "control.attraction_g: the most attraction, in units of gravity");

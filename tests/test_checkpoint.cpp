@@ -237,22 +237,57 @@ TEST_F(CheckpointFile, CliNamesTheBadCheckpoint) {
   EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
 }
 
-// A water dam break (DFSPH) resumed at the step where its substep count
-// changes: the solver's warm start scales k by the change of the substep, so
-// a checkpoint that forgot the last substep would resume with another start.
-TEST(Checkpoint, WaterResumeIsBitIdenticalWhereTheSubstepChanges) {
-  const char* scene = R"({
+// A small water dam break (DFSPH), its checkpoint written after `k` frame
+// steps and resumed to `steps`: how many particles differ (position or
+// velocity, bit for bit, by identity) from the run that went on, and
+// whether the fluid's clocks agree at the end.
+struct WaterResume {
+  size_t differ = 0;
+  bool same_clock = false;
+};
+constexpr char kWaterScene[] = R"({
     "name": "ckpt-water", "preset": "water",
     "container": {"min": [0, 0, 0], "max": [0.25, 0.15, 0.06]},
     "fluid": [{"origin": [0, 0, 0], "dims": [10, 16, 8]}]
   })";
-  using ff::Simulation;
-  auto fresh = [&] {
-    return std::make_unique<Simulation>(ff::parseScene(scene, "ckpt-water.json", ""),
-                                        std::make_unique<ff::CpuBackend>(2));
-  };
+std::unique_ptr<ff::Simulation> freshWater() {
+  return std::make_unique<ff::Simulation>(ff::parseScene(kWaterScene, "ckpt-water.json", ""),
+                                          std::make_unique<ff::CpuBackend>(2));
+}
+WaterResume resumeWater(ff::Simulation& straight, int k, int steps) {
+  auto first = freshWater();
+  for (int i = 0; i < k; ++i) first->step();
+  const fftest::TempDir d("ckpt_water");
+  const std::string path = (d / "water.ffck").string();
+  ff::writeCheckpoint(path, *first);
+  auto resumed = ff::loadCheckpoint(path, std::make_unique<ff::CpuBackend>(2));
+  for (int i = k; i < steps; ++i) resumed->step();
+  EXPECT_EQ(resumed->stepCount(), straight.stepCount());
+  ff::FluidState a, b;
+  straight.backend().readFluid(a);
+  resumed->backend().readFluid(b);
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_GT(a.size(), 0u);
+  WaterResume r;
+  r.same_clock = resumed->time() == straight.time();
+  if (a.size() != b.size()) return r;
+  std::vector<size_t> at(a.size());
+  for (size_t i = 0; i < b.size(); ++i) at[b.id[i]] = i;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const size_t j = at[a.id[i]];
+    const float va[6] = {a.x[i], a.y[i], a.z[i], a.vx[i], a.vy[i], a.vz[i]};
+    const float vb[6] = {b.x[j], b.y[j], b.z[j], b.vx[j], b.vy[j], b.vz[j]};
+    r.differ += std::memcmp(va, vb, sizeof va) != 0;
+  }
+  return r;
+}
+
+// Resumed at the step where its substep count changes: the solver's warm
+// start scales k by the change of the substep, so a checkpoint that forgot
+// the last substep would resume with another start.
+TEST(Checkpoint, WaterResumeIsBitIdenticalWhereTheSubstepChanges) {
   constexpr int kSteps = 60;
-  auto straight = fresh();
+  auto straight = freshWater();
   std::vector<int> substeps;
   for (int i = 0; i < kSteps; ++i) {
     straight->step();
@@ -262,31 +297,30 @@ TEST(Checkpoint, WaterResumeIsBitIdenticalWhereTheSubstepChanges) {
   while (k < kSteps - 5 && substeps[size_t(k)] == substeps[size_t(k) - 1]) ++k;
   ASSERT_LT(k, kSteps - 5) << "the substep count never changed; the test needs a step where it does";
   // Stop after step k - 1 (k steps), so the resumed run's first step has a new substep.
-  auto first = fresh();
-  for (int i = 0; i < k; ++i) first->step();
-  const fftest::TempDir d("ckpt_water");
-  const std::string path = (d / "water.ffck").string();
-  ff::writeCheckpoint(path, *first);
-  auto resumed = ff::loadCheckpoint(path, std::make_unique<ff::CpuBackend>(2));
-  for (int i = k; i < kSteps; ++i) resumed->step();
-  ff::FluidState a, b;
-  straight->backend().readFluid(a);
-  resumed->backend().readFluid(b);
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_GT(a.size(), 0u);
-  // By identity: the same particle has the same position and velocity bit for bit.
-  std::vector<size_t> at(a.size());
-  for (size_t i = 0; i < b.size(); ++i) at[b.id[i]] = i;
-  size_t differ = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const size_t j = at[a.id[i]];
-    const float va[6] = {a.x[i], a.y[i], a.z[i], a.vx[i], a.vy[i], a.vz[i]};
-    const float vb[6] = {b.x[j], b.y[j], b.z[j], b.vx[j], b.vy[j], b.vz[j]};
-    differ += std::memcmp(va, vb, sizeof va) != 0;
+  const WaterResume r = resumeWater(*straight, k, kSteps);
+  EXPECT_EQ(r.differ, 0u) << "resumed before step " << k << " (" << substeps[size_t(k) - 1] << " -> "
+                          << substeps[size_t(k)] << " substeps)";
+  EXPECT_TRUE(r.same_clock);
+}
+
+// Resumed where the fluid's clock runs ahead of the frame steps (its
+// substeps carry over the frame, fluid.substep_carry): a checkpoint that
+// forgot the lead would plan the next frame step's substeps from the frame
+// and resume on another clock.
+TEST(Checkpoint, WaterResumeKeepsTheLeadOfCarriedSubsteps) {
+  constexpr int kSteps = 60;
+  auto straight = freshWater();
+  const double frame = double(straight->scene().params.fluid.time_step);
+  int k = 0;
+  for (int i = 0; i < kSteps; ++i) {
+    straight->step();
+    const double lead = straight->time() - double(straight->stepCount()) * frame;
+    if (k == 0 && i < kSteps - 5 && lead > 0.1 * frame) k = i + 1;
   }
-  EXPECT_EQ(differ, 0u) << "resumed before step " << k << " (" << substeps[size_t(k) - 1] << " -> "
-                        << substeps[size_t(k)] << " substeps)";
-  EXPECT_EQ(resumed->stepCount(), straight->stepCount());
+  ASSERT_GT(k, 0) << "the fluid's clock never led the frames by a tenth of a frame step";
+  const WaterResume r = resumeWater(*straight, k, kSteps);
+  EXPECT_EQ(r.differ, 0u) << "resumed after step " << k;
+  EXPECT_TRUE(r.same_clock);
 }
 
 // The control radius edited while a target is active (as the viewer, a

@@ -162,11 +162,13 @@ class PySimulation {
   // Counted from the current time, not the step count (the step may have
   // changed, set_params), and a time within 1e-6 of `until` (relative) has
   // reached it: the step is a float, and 4 steps of 0.005 s end at
-  // 0.0199999996 s.
+  // 0.0199999996 s. Counted on the frame clock: the fluid's clock leads it
+  // by less than a substep where substeps carry over the frame, and that
+  // lead may shrink over the steps.
   long stepsUntil(double until, double dt) const {
     ff::checkRunLength(until, dt, "run: until");
     const double tol = 1e-6 * until;
-    const double left = until - sim_->time();
+    const double left = until - sim_->frameTime();
     return left <= tol ? 0L : ff::runSteps(left - tol, dt, "run: until");
   }
 

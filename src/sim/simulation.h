@@ -51,6 +51,8 @@ class Simulation {
   // The fluid's simulated time (s): whole frame steps, ahead of them by less
   // than a substep where substeps carry over the frame (fluid.substep_carry).
   double time() const { return time_; }
+  // The frame clock (s): the frame steps taken, time() less the lead.
+  double frameTime() const { return time_ - lead_; }
   const TargetShape* target() const { return target_; }
   size_t targetCacheSize() const { return cache_.size(); }
   size_t targetVoxelisations() const { return cache_.voxelisations(); }

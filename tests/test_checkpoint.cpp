@@ -188,6 +188,37 @@ TEST_F(CheckpointFile, AnotherVersionIsNamed) {
   EXPECT_NE(e.find("format " + std::to_string(v)), std::string::npos) << e;
 }
 
+// The FNV-1a 64 checksum of the checkpoint's payload (checkpoint.h), from
+// FNV's published offset basis and prime, written out here: a test that
+// edits the payload seals it again.
+uint64_t fnv1a64(const std::string& b, size_t from) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (size_t i = from; i < b.size(); ++i) h = (h ^ uint8_t(b[i])) * 0x100000001b3ull;
+  return h;
+}
+
+// A lead of the substeps that is not a finite time >= 0, in a file whose
+// checksum matches (edited on purpose), is named, not resumed from.
+TEST_F(CheckpointFile, ABadLeadOfTheSubstepsIsNamed) {
+  constexpr size_t kHeader = 32;  // magic 8, version 4, layout 4, size 8, checksum 8
+  const size_t simu = bytes.find("SIMU", kHeader);
+  ASSERT_NE(simu, std::string::npos);
+  const size_t at = simu + 4 + sizeof(long) + sizeof(double);  // after the tag, step_ and time_
+  ASSERT_LE(at + sizeof(double), bytes.size());
+  double lead = 0.0;
+  std::memcpy(&lead, &bytes[at], sizeof lead);
+  EXPECT_EQ(lead, 0.0) << "the sphere scene's first steps take whole substeps";
+  for (const double bad : {-1e-3, std::nan("")}) {
+    std::string b = bytes;
+    std::memcpy(&b[at], &bad, sizeof bad);
+    const uint64_t sum = fnv1a64(b, kHeader);
+    std::memcpy(&b[24], &sum, sizeof sum);
+    const std::string e = loadError(b);
+    EXPECT_NE(e.find("bad.ffck"), std::string::npos) << e;
+    EXPECT_NE(e.find("its substeps' lead is not a finite time >= 0"), std::string::npos) << e;
+  }
+}
+
 TEST_F(CheckpointFile, TruncatedAndForeignFilesAreRefused) {
   std::string e = loadError(bytes.substr(0, bytes.size() - 100));
   EXPECT_NE(e.find("truncated or corrupted"), std::string::npos) << e;

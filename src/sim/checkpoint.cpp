@@ -26,7 +26,7 @@ uint32_t layout() {
 }
 
 uint64_t fnv1a(const char* p, size_t n) {
-  uint64_t h = 1469598103934665603ull;
+  uint64_t h = 14695981039346656037ull;  // FNV-1a 64's offset basis (0xcbf29ce484222325)
   for (size_t i = 0; i < n; ++i) {
     h ^= uint8_t(p[i]);
     h *= 1099511628211ull;

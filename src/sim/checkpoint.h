@@ -19,7 +19,9 @@ namespace ff {
 
 constexpr unsigned kCheckpointVersion = 8;  // 3: control radius scale; 4: the DFSPH substep; 5: the anchor;
                                             // 6: the held pressure (pressure_cfl); 7: rest-shape blend;
-                                            // 8: the substeps' lead (fluid.substep_carry)
+                                            // 8: the substeps' lead (fluid.substep_carry), and
+                                            // FNV-1a's own offset basis (7 and before had
+                                            // 1469598103934665603, a digit short)
 
 // Writes the run to `path` (through a temporary file and a rename, so an
 // interrupted write never leaves a half file under that name). Throws

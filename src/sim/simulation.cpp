@@ -96,6 +96,7 @@ Simulation::Simulation(SceneDesc scene, std::unique_ptr<Backend> backend, StateR
   backend_->init(scene_.params, scene_.container, makeFluid(scene_));
   r.tag("SIMU");
   r.pod(step_), r.pod(time_), r.pod(lead_), r.pod(metrics_);
+  r.check(std::isfinite(lead_) && lead_ >= 0.0, "its substeps' lead is not a finite time >= 0");
   const uint64_t next = r.pod<uint64_t>();
   r.check(next <= scene_.schedule.size(), "the schedule position is past the schedule's end");
   next_schedule_ = size_t(next);

@@ -42,6 +42,7 @@ TEST(SubstepPlan, CarriedSubstepsAreAsFewAsTheFluidsClockNeeds) {
   const ff::SubstepPlan e = equal.substepPlan(0.0, 0.0, v);
   EXPECT_EQ(e.count, 4);
   EXPECT_EQ(e.dt, f.time_step / 4.0f);
+  EXPECT_EQ(e.advance, double(f.time_step));
   EXPECT_EQ(e.lead, 0.0);
 
   double lead = 0.0, fluid_clock = 0.0;
@@ -51,7 +52,8 @@ TEST(SubstepPlan, CarriedSubstepsAreAsFewAsTheFluidsClockNeeds) {
     const ff::SubstepPlan p = f.substepPlan(lead, 0.0, v);
     ASSERT_GE(p.count, 1);
     EXPECT_LE(double(p.dt), limit * (1.0 + 1e-6)) << "frame " << k;
-    fluid_clock += double(p.count) * double(p.dt);
+    EXPECT_EQ(p.advance, double(p.count) * double(p.dt)) << "frame " << k;
+    fluid_clock += p.advance;
     substeps += p.count;
     lead = p.lead;
     EXPECT_GE(lead, 0.0) << "frame " << k;

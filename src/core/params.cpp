@@ -61,6 +61,7 @@ SubstepPlan FluidParams::substepPlan(double lead, double max_pressure, double ma
   if (!substep_carry) {
     plan.count = substepsFor(max_pressure, max_speed);
     plan.dt = time_step / float(plan.count);
+    plan.advance = double(time_step);  // the frame step, whatever the rounding of count x dt
     plan.lead = lead;
     return plan;
   }
@@ -72,7 +73,8 @@ SubstepPlan FluidParams::substepPlan(double lead, double max_pressure, double ma
   const double n = std::ceil(rest / longest - 1e-9);
   plan.count = int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
   plan.dt = float(std::max(longest, rest / double(plan.count)));
-  plan.lead = std::max(0.0, double(plan.count) * double(plan.dt) - rest);
+  plan.advance = double(plan.count) * double(plan.dt);
+  plan.lead = std::max(0.0, plan.advance - rest);
   return plan;
 }
 

@@ -24,11 +24,13 @@ const char* solverName(PressureSolverKind k);
 // The solver called `name`; throws ff::Error "params.fluid.solver: ..." for another.
 PressureSolverKind solverByName(const std::string& name);
 
-// A frame step's substeps: `count` of `dt` s each, after which the fluid's
-// clock leads the frame clock by `lead` s (0 <= lead < dt).
+// A frame step's substeps: `count` of `dt` s each, which advance the
+// fluid's clock by `advance` s, after which it leads the frame clock by
+// `lead` s (0 <= lead < dt).
 struct SubstepPlan {
   int count = 1;
   float dt = 0.0f;
+  double advance = 0.0;
   double lead = 0.0;
 };
 

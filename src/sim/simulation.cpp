@@ -204,9 +204,8 @@ void Simulation::step() {
   const long step = step_;
   const double time = time_;
   ++step_;
-  // The fluid's clock: whole frame steps, or the substeps it took where they
-  // carry over the frame (then lead_ is how far it runs ahead of the frames).
-  time_ += fp.substep_carry ? double(n) * double(dt) : double(fp.time_step);
+  // The fluid's clock, and how far it runs ahead of the frames.
+  time_ += plan.advance;
   lead_ = plan.lead;
   const bool want = metrics_requested_ || step_ % metrics_every_ == 0;
   const bool with_shape = !shape_on_request_ || metrics_requested_;

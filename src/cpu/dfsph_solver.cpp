@@ -1,5 +1,6 @@
 #include "cpu/dfsph_solver.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -304,7 +305,8 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   return !bad;
 }
 
-double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const float* rs) {
+double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const float* rs, float* warm_k,
+                            float warm, bool* warmed) {
   const long n = long(f.size());
   const FluidState& s = f.s;
   SourceArgs a;
@@ -318,11 +320,28 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const flo
   a.vol = vol_, a.spacing = vol_spacing_, a.H = vol_h_, a.inv_h = 1.0f / vol_h_,
   a.eps = ff_dfsph_eps(a.inv_h);
   a.inv_rho0 = 1.0f / rho0_, a.dt = dt, a.density = density;
-  forEachGroupIndex(f.groups,
-                    [&](size_t gi, uint32_t b, uint32_t e) { groupSources(f, cache_, gi, b, e, a); });
-  double err = 0.0;  // summed in the particles' order, as before the passes were merged
-#pragma omp parallel for schedule(static) reduction(+ : err)
-  for (long i = 0; i < n; ++i) err += double(b_[size_t(i)]);
+  // The sum of b by group and the warm start in the same pass (b still in
+  // cache), then the sum over the groups in their order: the same sum
+  // whatever the threads.
+  group_b_.resize(f.groups.size() / 2);
+  double* const gb = group_b_.data();
+  std::atomic<bool> any{false};
+  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
+    groupSources(f, cache_, gi, b, e, a);
+    double sum = 0.0;
+    for (uint32_t i = b; i < e; ++i) sum += double(a.b[i]);
+    gb[gi] = sum;
+    if (!warm_k) return;
+    bool nonzero = false;
+    for (uint32_t i = b; i < e; ++i) {
+      warm_k[i] = ff_dfsph_warm_start(warm_k[i], a.b[i], warm);
+      nonzero |= warm_k[i] != 0.0f;
+    }
+    if (nonzero) any.store(true, std::memory_order_relaxed);
+  });
+  if (warmed) *warmed = any.load(std::memory_order_relaxed);
+  double err = 0.0;
+  for (const double g : group_b_) err += g;
   return n ? err / double(n) : 0.0;
 }
 
@@ -354,25 +373,19 @@ void DfsphSolver::applyVelocityChange(const CpuFluid& f, bool density, const std
 
 int DfsphSolver::iterate(const CpuFluid& f, const FluidParams& p, bool density, float dt, double tol,
                          int min_iterations, float warm, std::vector<float>& k) {
-  const long n = long(f.size());
   const float scale = density ? dt : 1.0f;
   // The divergence solve's first sources: on the velocities of the density
   // phase, whose walk summed them already (factorSums), unless the particles
   // were reordered since.
   const bool known = !density && rs_current_;
   rs_current_ = false;
-  double err = sources(f, density, dt, known ? rs_.data() : nullptr);
-  // Warm start: the last substep's k where this one compresses too. Where
-  // that is 0 for every particle (a divergence solve that has not iterated
-  // since k last came to 0, say), its velocity change is 0 and the sources
-  // after it are the ones above: both walks are skipped, for the same bits.
-  int warmed = 0;
-#pragma omp parallel for schedule(static) reduction(| : warmed)
-  for (long i = 0; i < n; ++i) {
-    const float ki = ff_dfsph_warm_start(k[size_t(i)], b_[size_t(i)], warm);
-    k[size_t(i)] = ki;
-    warmed |= ki != 0.0f ? 1 : 0;
-  }
+  // Warm start (in the sources' pass): the last substep's k where this one
+  // compresses too. Where that is 0 for every particle (a divergence solve
+  // that has not iterated since k last came to 0, say), its velocity change
+  // is 0 and the sources after it are the first ones: both walks are
+  // skipped, for the same bits.
+  bool warmed = false;
+  double err = sources(f, density, dt, known ? rs_.data() : nullptr, k.data(), warm, &warmed);
   if (warmed) {
     applyVelocityChange(f, density, k, scale, nullptr);
     err = sources(f, density, dt);
@@ -478,7 +491,8 @@ size_t DfsphSolver::memoryBytes() const {
   for (const auto* v : {&alpha_, &wgx_, &wgy_, &wgz_, &wall_, &vax_, &vay_, &vaz_, &q_,       &wpx_, &wpy_,
                         &wpz_,   &kd_,  &kv_,  &b_,   &inc_,  &ux_,  &uy_,  &uz_,  &scratch_, &rs_})
     floats += v->capacity();
-  return floats * sizeof(float) + bulk_.capacity() + cache_.memoryBytes();
+  return floats * sizeof(float) + group_b_.capacity() * sizeof(double) + bulk_.capacity() +
+         cache_.memoryBytes();
 }
 
 }  // namespace ff

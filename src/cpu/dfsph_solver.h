@@ -44,7 +44,11 @@ class DfsphSolver : public PressureSolver {
   // b_ = each particle's compression (rate) that the velocities u_ still
   // cause, and inc_ its Jacobi increment; returns the mean of b_. rs: the
   // neighbour sums of the rate where known (rs_), else they are walked.
-  double sources(const CpuFluid& f, bool density, float dt, const float* rs = nullptr);
+  // With `warm_k`, also its warm start in the same pass: warm_k[i] becomes
+  // ff_dfsph_warm_start(warm_k[i], b_i, warm), and *warmed whether any of
+  // them is not 0.
+  double sources(const CpuFluid& f, bool density, float dt, const float* rs = nullptr,
+                 float* warm_k = nullptr, float warm = 0.0f, bool* warmed = nullptr);
   // u_ += the velocity change of k, over `scale`; and total += k if given
   // (one pass over the neighbour cache).
   // The density solve pushes with the walls' gradient at the predicted
@@ -68,6 +72,7 @@ class DfsphSolver : public PressureSolver {
   bool rs_current_ = false;
   std::vector<float> kd_, kv_;  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
+  std::vector<double> group_b_;  // sources(): the sum of b in each lane group
   int last_div_ = 0, last_dens_ = 0;
   long cold_starts_[2] = {0, 0};
   float last_dt_ = 0.0f, rho0_ = 1.0f;

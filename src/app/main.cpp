@@ -29,8 +29,15 @@ namespace {
 // loaded one; docs/PERFORMANCE.md, "OpenMP wait policy").
 // The OpenMP runtime reads the variables when it loads, so the program
 // restarts itself once with them set; if that fails it just goes on.
+// Not where the user binds threads to places (OMP_PROC_BIND, OMP_PLACES,
+// GOMP_CPU_AFFINITY): libgomp binds the first thread to the first place as it
+// loads, and the restarted program inherits that one CPU, so every thread ran
+// there (the peer dam break with 2 threads took as long as with 1,
+// docs/PERFORMANCE.md, "OpenMP wait policy").
 void passiveOpenMp(int argc, char** argv) {
   if (argc < 2 || std::getenv("OMP_WAIT_POLICY")) return;
+  for (const char* bind : {"OMP_PROC_BIND", "OMP_PLACES", "GOMP_CPU_AFFINITY"})
+    if (std::getenv(bind)) return;
   const std::string sub = argv[1];
   if (sub != "view" && sub != "render" && sub != "run" && sub != "bench") return;
   if (::setenv("OMP_WAIT_POLICY", "PASSIVE", 0) != 0) return;

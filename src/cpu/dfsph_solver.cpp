@@ -284,7 +284,9 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   const FactorOut out{alpha_.data(), wgx_.data(), wgy_.data(), wgz_.data(), wall_.data(),
                       vax_.data(),   vay_.data(), vaz_.data(), q_.data()};
   int bad = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(| : bad) num_threads(threads)
+  // Static: a thread fills the lists of the groups it will mostly walk
+  // (forEachGroupInParts over split()'s parts, below).
+#pragma omp parallel for schedule(static) reduction(| : bad) num_threads(threads)
   for (long gi = 0; gi < groups; ++gi) {
     const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
     float sums[56];
@@ -300,6 +302,7 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
       bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
     }
   }
+  cache_.split(threads);
   cache_current_ = true, rs_current_ = true;
   record(stages_, "density", "dfsph factor + neighbour cache", t0);
   return !bad;
@@ -326,18 +329,19 @@ double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const flo
   group_b_.resize(f.groups.size() / 2);
   double* const gb = group_b_.data();
   std::atomic<bool> any{false};
-  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
+  forEachGroupInParts(cache_.parts(), f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     groupSources(f, cache_, gi, b, e, a);
     double sum = 0.0;
     for (uint32_t i = b; i < e; ++i) sum += double(a.b[i]);
     gb[gi] = sum;
-    if (!warm_k) return;
+    if (!warm_k) return true;
     bool nonzero = false;
     for (uint32_t i = b; i < e; ++i) {
       warm_k[i] = ff_dfsph_warm_start(warm_k[i], a.b[i], warm);
       nonzero |= warm_k[i] != 0.0f;
     }
     if (nonzero) any.store(true, std::memory_order_relaxed);
+    return true;
   });
   if (warmed) *warmed = any.load(std::memory_order_relaxed);
   double err = 0.0;
@@ -356,7 +360,7 @@ void DfsphSolver::applyVelocityChange(const CpuFluid& f, bool density, const std
   const float* const kp = k.data();
   float *const ux = ux_.data(), *const uy = uy_.data(), *const uz = uz_.data();
   const float vol = vol_;
-  forEachGroupIndex(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
+  forEachGroupInParts(cache_.parts(), f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float ks[24];
     kappaSums(f, cache_, gi, kp, b, e, ks);
     const float iv = inv, v = vol;
@@ -368,6 +372,7 @@ void DfsphSolver::applyVelocityChange(const CpuFluid& f, bool density, const std
       ux[i] += du[0] * iv, uy[i] += du[1] * iv, uz[i] += du[2] * iv;
       if (tot) tot[i] += kp[i];
     }
+    return true;
   });
 }
 

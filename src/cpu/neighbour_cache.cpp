@@ -42,8 +42,24 @@ void NeighbourCache::close(size_t gi, const Writer& w) {
   b.size += w.n_;
 }
 
+void NeighbourCache::split(int count) {
+  const size_t n = count_.size();
+  uint64_t total = 0;
+  for (const uint32_t c : count_) total += c + kGroupShare;
+  parts_.assign(size_t(std::max(count, 1)) + 1, n);
+  parts_[0] = 0;
+  // Part k ends at the first group where the work so far reaches k / count of the total.
+  uint64_t sum = 0;
+  size_t k = 1;
+  for (size_t gi = 0; gi < n && k + 1 < parts_.size(); ++gi) {
+    sum += count_[gi] + kGroupShare;
+    while (k + 1 < parts_.size() && sum * uint64_t(parts_.size() - 1) >= total * k) parts_[k++] = gi + 1;
+  }
+}
+
 size_t NeighbourCache::memoryBytes() const {
-  size_t bytes = (offset_.capacity() + count_.capacity() + owner_.capacity()) * sizeof(uint32_t);
+  size_t bytes = (offset_.capacity() + count_.capacity() + owner_.capacity()) * sizeof(uint32_t) +
+                 parts_.capacity() * sizeof(size_t);
   for (const Buffer& b : buffers_) bytes += b.capacity * (sizeof(uint32_t) + 8 * sizeof(float));
   return bytes;
 }

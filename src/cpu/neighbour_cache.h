@@ -26,6 +26,9 @@ class NeighbourCache {
  public:
   // A candidate is kept where some lane has r^2 < kReachSlack H^2.
   static constexpr float kReachSlack = 1.0001f;
+  // A group's own work in a walk (loading its lanes, the per-particle
+  // epilogue), in candidates, for split().
+  static constexpr uint64_t kGroupShare = 16;
 
   // Forgets every list and sizes the index for `groups` groups of radius H
   // (outside a parallel region; the buffers keep their capacity). Returns
@@ -68,6 +71,11 @@ class NeighbourCache {
   const uint32_t* neighbours(size_t gi) const { return buffers_[owner_[gi]].j.get() + offset_[gi]; }
   // 8 lane values per candidate (load them with memcpy: no alignment).
   const float* values(size_t gi) const { return buffers_[owner_[gi]].g.get() + 8 * size_t(offset_[gi]); }
+  // After filling: the groups split into `count` consecutive parts of about
+  // equal work (their candidates plus kGroupShare each), for
+  // forEachGroupInParts; part k is groups parts()[k] .. parts()[k+1] - 1.
+  void split(int count);
+  const std::vector<size_t>& parts() const { return parts_; }
   size_t memoryBytes() const;
 
  private:
@@ -79,6 +87,7 @@ class NeighbourCache {
   };
   std::vector<Buffer> buffers_;                   // one per thread
   std::vector<uint32_t> offset_, count_, owner_;  // per group
+  std::vector<size_t> parts_;                     // split()'s bounds
   float radius_ = 0.0f;
 };
 

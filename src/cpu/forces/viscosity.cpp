@@ -72,7 +72,7 @@ class CpuViscosity : public CpuForce {
         c.neighbours && c.neighbours->radius() >= h && c.neighbours->groups() == f.groups.size() / 2
             ? c.neighbours
             : nullptr;
-    return forEachGroupIndexFinite(f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
+    const auto walk = [&](size_t gi, uint32_t b, uint32_t e) {
       float sums[24];
       viscositySums(f, nc, gi, b, e, h, m, sums);
       bool finite = true;
@@ -85,7 +85,9 @@ class CpuViscosity : public CpuForce {
         finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
       }
       return finite;
-    });
+    };
+    // With the lists, each thread walks the part of the groups whose lists it filled.
+    return nc ? forEachGroupInParts(nc->parts(), f.groups, walk) : forEachGroupIndexFinite(f.groups, walk);
   }
 };
 

@@ -3,10 +3,13 @@
 // consecutive parts that cover every group once, each within one group's
 // work of an equal share, however unevenly the work lies.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "cpu/lane_group.h"
@@ -98,6 +101,31 @@ TEST(GroupParts, TheWalkVisitsEachGroupOnce) {
   // A false from any call is reported.
   const std::vector<size_t> two = {0, 150, 300};
   EXPECT_FALSE(ff::forEachGroupInParts(two, groups, [](size_t gi, uint32_t, uint32_t) { return gi != 200; }));
+}
+
+// A thread that is held up has its part finished by the others: thread 0
+// waits on its first group until some other thread has walked a group of
+// part 0 (at most 20 s; without the help it would wait them out and fail).
+TEST(GroupParts, AHeldUpThreadsPartIsFinishedByTheOthers) {
+  std::vector<uint32_t> groups;
+  for (uint32_t g = 0; g < 400; ++g) groups.push_back(8 * g), groups.push_back(8 * g + 8);
+  const std::vector<size_t> bounds = {0, 200, 400};
+  std::atomic<int> helped{0}, threads{0};
+  std::vector<std::atomic<int>> seen(400);
+  ff::forEachGroupInParts(bounds, groups, [&](size_t gi, uint32_t, uint32_t) {
+    const int t = omp_get_thread_num();
+    if (gi == 0) threads = omp_get_num_threads();
+    if (gi < 200 && t != 0) helped = 1;
+    if (gi == 0 && t == 0 && omp_get_num_threads() > 1) {
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (!helped && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+    }
+    seen[gi].fetch_add(1);
+    return true;
+  });
+  if (threads < 2) GTEST_SKIP() << "one thread: nobody to help";
+  EXPECT_EQ(helped.load(), 1);
+  for (size_t g = 0; g < seen.size(); ++g) EXPECT_EQ(seen[g].load(), 1) << "group " << g;
 }
 
 }  // namespace

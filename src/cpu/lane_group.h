@@ -1,7 +1,12 @@
 // lane_group.h - up to 8 consecutive grid-sorted particles as the lanes of
 // one neighbour walk (the OpenMP backend's counterpart of ff_lanes.h).
 #pragma once
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/fluid_state.h"
@@ -52,22 +57,35 @@ void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
 }
 
 // Runs body(gi, b, e) over the groups of each part k of `bounds` (groups
-// bounds[k] .. bounds[k+1] - 1, in order) on one thread, the same thread for
-// the same part in every call: a part's particles and neighbour lists stay
-// in the cache of the core that last walked them, where
-// forEachGroupIndex's chunks went to whichever thread was free (the solve's
-// walks took 6 % more wall time on 2 threads; docs/PERFORMANCE.md).
-// Returns whether every call returned true.
+// bounds[k] .. bounds[k+1] - 1, in order), thread k first taking its own
+// part a few groups at a time, then helping with the others' rest: a part's
+// particles and neighbour lists stay in the cache of the core that walked
+// them last, where forEachGroupIndex's chunks went to whichever thread was
+// free, and a thread that the machine holds up has its part finished by
+// the others (docs/PERFORMANCE.md, "Each thread its own part of the
+// groups"). Returns whether every call returned true.
 template <class Body>
 bool forEachGroupInParts(const std::vector<size_t>& bounds, const std::vector<uint32_t>& groups,
                          Body&& body) {
-  const long parts = long(bounds.size()) - 1;
+  const int parts = int(bounds.size()) - 1;
   if (parts < 1) return true;
+  constexpr size_t kTake = 4;  // groups per take
+  struct alignas(64) Next {
+    std::atomic<size_t> at{0};
+  };
+  const std::unique_ptr<Next[]> next(new Next[size_t(parts)]);
   int bad = 0;
-#pragma omp parallel for schedule(static, 1) num_threads(int(parts)) reduction(| : bad)
-  for (long k = 0; k < parts; ++k)
-    for (size_t gi = bounds[size_t(k)]; gi < bounds[size_t(k) + 1]; ++gi)
-      bad |= body(gi, groups[2 * gi], groups[2 * gi + 1]) ? 0 : 1;
+#pragma omp parallel num_threads(parts) reduction(| : bad)
+  {
+    const int t = omp_get_thread_num();
+    for (int r = 0; r < parts; ++r) {
+      const size_t k = size_t((t + r) % parts), b = bounds[k], e = bounds[k + 1];
+      for (size_t at = next[k].at.fetch_add(kTake, std::memory_order_relaxed); b + at < e;
+           at = next[k].at.fetch_add(kTake, std::memory_order_relaxed))
+        for (size_t gi = b + at; gi < std::min(e, b + at + kTake); ++gi)
+          bad |= body(gi, groups[2 * gi], groups[2 * gi + 1]) ? 0 : 1;
+    }
+  }
   return !bad;
 }
 

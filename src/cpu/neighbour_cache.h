@@ -27,7 +27,9 @@ class NeighbourCache {
   // A candidate is kept where some lane has r^2 < kReachSlack H^2.
   static constexpr float kReachSlack = 1.0001f;
   // A group's own work in a walk (loading its lanes, the per-particle
-  // epilogue), in candidates, for split().
+  // epilogue), in candidates, for split(): an estimate, not measured (a
+  // peer dam break group has 100-150 candidates, so it moves a split by a
+  // few groups; the parts' helping absorbs that).
   static constexpr uint64_t kGroupShare = 16;
 
   // Forgets every list and sizes the index for `groups` groups of radius H

@@ -86,7 +86,7 @@ class CpuViscosity : public CpuForce {
       }
       return finite;
     };
-    // With the lists, each thread walks the part of the groups whose lists it filled.
+    // With the lists, each thread walks its part of the groups (mostly the lists it filled).
     return nc ? forEachGroupInParts(nc->parts(), f.groups, walk) : forEachGroupIndexFinite(f.groups, walk);
   }
 };

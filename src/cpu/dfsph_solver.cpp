@@ -283,29 +283,58 @@ bool DfsphSolver::computeDensity(CpuFluid& f, const FluidParams& p, const Contai
   const int threads = cache_.reset(size_t(groups), kr.h);
   const FactorOut out{alpha_.data(), wgx_.data(), wgy_.data(), wgz_.data(), wall_.data(),
                       vax_.data(),   vay_.data(), vaz_.data(), q_.data()};
-  int bad = 0;
-  // Static: a thread fills the lists of the groups it will mostly walk
-  // (forEachGroupInParts over split()'s parts, below).
-#pragma omp parallel for schedule(static) reduction(| : bad) num_threads(threads)
-  for (long gi = 0; gi < groups; ++gi) {
-    const uint32_t b = f.groups[2 * size_t(gi)], e = f.groups[2 * size_t(gi) + 1];
+  // Each thread fills the lists of the groups it will walk: the last
+  // substep's parts, where their first particles stood (the particles moved
+  // little), with forEachGroupInParts' help where that misses.
+  fillParts(f.groups, threads);
+  const bool finite = forEachGroupInParts(fill_parts_, f.groups, [&](size_t gi, uint32_t b, uint32_t e) {
     float sums[56];
-    factorSums(f, size_t(gi), b, e, kr, sums, cache_);
+    factorSums(f, gi, b, e, kr, sums, cache_);
     float rho_hat[8];
     factorParts(f, b, e, sums, lo, hi, vol_spacing_, kr, vol, eps, rho_hat, out);
+    bool ok = true;
     for (uint32_t i = b; i < e; ++i) {
       const size_t l = i - b;
       f.rho[i] = rho0 * rho_hat[l];
       rs_[i] = sums[48 + l];
       const float share = rho_hat[l] - vol * sums[l];  // the walls' share
       bulk_[i] = uint8_t(ff_dfsph_bulk(sums[40 + l], share, full, kBulkShare));
-      bad |= std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]) ? 0 : 1;
+      ok = ok && std::isfinite(f.rho[i]) && std::isfinite(alpha_[i]);
     }
-  }
+    return ok;
+  });
   cache_.split(threads);
+  split_at_.resize(cache_.parts().size());
+  for (size_t k = 0; k < split_at_.size(); ++k) {
+    const size_t g = cache_.parts()[k];
+    split_at_[k] = g < size_t(groups) ? f.groups[2 * g] : uint32_t(n);
+  }
   cache_current_ = true, rs_current_ = true;
   record(stages_, "density", "dfsph factor + neighbour cache", t0);
-  return !bad;
+  return finite;
+}
+
+void DfsphSolver::fillParts(const std::vector<uint32_t>& groups, int threads) {
+  const size_t count = groups.size() / 2;
+  fill_parts_.assign(size_t(threads) + 1, count);
+  fill_parts_[0] = 0;
+  const bool known = split_at_.size() == fill_parts_.size();
+  for (size_t k = 1; k < size_t(threads); ++k) {
+    if (!known) {
+      fill_parts_[k] = count * k / size_t(threads);
+      continue;
+    }
+    // The first group that starts at or after the part's first particle.
+    size_t lo = fill_parts_[k - 1], hi = count;
+    while (lo < hi) {
+      const size_t mid = (lo + hi) / 2;
+      if (groups[2 * mid] < split_at_[k])
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    fill_parts_[k] = lo;
+  }
 }
 
 double DfsphSolver::sources(const CpuFluid& f, bool density, float dt, const float* rs, float* warm_k,

@@ -47,6 +47,8 @@ class DfsphSolver : public PressureSolver {
   // With `warm_k`, also its warm start in the same pass: warm_k[i] becomes
   // ff_dfsph_warm_start(warm_k[i], b_i, warm), and *warmed whether any of
   // them is not 0.
+  // fill_parts_: `threads` parts of `groups` for the density phase.
+  void fillParts(const std::vector<uint32_t>& groups, int threads);
   double sources(const CpuFluid& f, bool density, float dt, const float* rs = nullptr,
                  float* warm_k = nullptr, float warm = 0.0f, bool* warmed = nullptr);
   // u_ += the velocity change of k, over `scale`; and total += k if given
@@ -73,6 +75,10 @@ class DfsphSolver : public PressureSolver {
   std::vector<float> kd_, kv_;  // warm-start state: the last solves' k
   std::vector<float> inc_, b_, ux_, uy_, uz_, scratch_;
   std::vector<double> group_b_;  // sources(): the sum of b in each lane group
+  // The density phase's parts (fillParts) and the first particle of each of
+  // the last split's parts.
+  std::vector<size_t> fill_parts_;
+  std::vector<uint32_t> split_at_;
   int last_div_ = 0, last_dens_ = 0;
   long cold_starts_[2] = {0, 0};
   float last_dt_ = 0.0f, rho0_ = 1.0f;

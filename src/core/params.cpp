@@ -51,9 +51,18 @@ float FluidParams::frameStep() const {
   return float(std::round(double(time_step_fall) * fallTime() * 1e6) * 1e-6);
 }
 
+namespace {
+
+// The substeps of at most `longest` s each that `span` s takes, 1 to `most`.
+int substepCount(double span, double longest, int most) {
+  const double n = std::ceil(span / longest - 1e-9);
+  return int(std::clamp(n, 1.0, double(std::max(1, most))));
+}
+
+}  // namespace
+
 int FluidParams::substepsFor(double max_pressure, double max_speed) const {
-  const double n = std::ceil(double(time_step) / substepLimit(max_pressure, max_speed) - 1e-9);
-  return int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+  return substepCount(double(time_step), substepLimit(max_pressure, max_speed), max_substeps);
 }
 
 SubstepPlan FluidParams::substepPlan(double lead, double max_pressure, double max_speed) const {
@@ -70,8 +79,7 @@ SubstepPlan FluidParams::substepPlan(double lead, double max_pressure, double ma
   // than the lead (the viewer's slider) starts the frame clock afresh.
   const double rest = lead < frame ? frame - lead : frame;
   const double longest = std::min(substepLimit(max_pressure, max_speed), frame);
-  const double n = std::ceil(rest / longest - 1e-9);
-  plan.count = int(std::clamp(n, 1.0, double(std::max(1, max_substeps))));
+  plan.count = substepCount(rest, longest, max_substeps);
   plan.dt = float(std::max(longest, rest / double(plan.count)));
   plan.advance = double(plan.count) * double(plan.dt);
   plan.lead = std::max(0.0, plan.advance - rest);

@@ -56,6 +56,22 @@ void forEachGroupIndex(const std::vector<uint32_t>& groups, Body&& body) {
   for (long gi = 0; gi < n; ++gi) body(size_t(gi), groups[2 * size_t(gi)], groups[2 * size_t(gi) + 1]);
 }
 
+// The next group to take of each part of forEachGroupInParts, on its own
+// cache line.
+struct alignas(64) PartCursor {
+  std::atomic<size_t> at{0};
+};
+// `parts` cursors at 0, kept by the calling thread from call to call (no
+// allocation per walk once they suffice); so a body must not start
+// another forEachGroupInParts.
+inline PartCursor* partCursors(int parts) {
+  static thread_local std::unique_ptr<PartCursor[]> cursors;
+  static thread_local int room = 0;
+  if (parts > room) cursors.reset(new PartCursor[size_t(parts)]), room = parts;
+  for (int k = 0; k < parts; ++k) cursors[size_t(k)].at.store(0, std::memory_order_relaxed);
+  return cursors.get();
+}
+
 // Runs body(gi, b, e) over the groups of each part k of `bounds` (groups
 // bounds[k] .. bounds[k+1] - 1, in order), thread k first taking its own
 // part a few groups at a time, then helping with the others' rest: a part's
@@ -70,10 +86,7 @@ bool forEachGroupInParts(const std::vector<size_t>& bounds, const std::vector<ui
   const int parts = int(bounds.size()) - 1;
   if (parts < 1) return true;
   constexpr size_t kTake = 4;  // groups per take
-  struct alignas(64) Next {
-    std::atomic<size_t> at{0};
-  };
-  const std::unique_ptr<Next[]> next(new Next[size_t(parts)]);
+  PartCursor* const next = partCursors(parts);
   int bad = 0;
 #pragma omp parallel num_threads(parts) reduction(| : bad)
   {
